@@ -1,0 +1,40 @@
+# Finds every dependency from Debian packages. A missing one stops configure with the
+# name of the Debian package that provides it.
+include_guard(GLOBAL)
+
+set(BOXSIM_APT_PACKAGES
+    "cmake g++ make libeigen3-dev libgsl-dev catch2 nlohmann-json3-dev libcli11-dev gnuplot-nox doxygen graphviz libjs-mathjax")
+
+macro(boxsim_require_package name debian_package)
+  find_package(${name} ${ARGN} QUIET)
+  if(NOT ${name}_FOUND)
+    message(FATAL_ERROR
+      "boxsim: dependency '${name}' was not found.\n"
+      "Install it with:  apt-get install -y ${debian_package}\n"
+      "(all dependencies at once: apt-get install -y ${BOXSIM_APT_PACKAGES})")
+  endif()
+endmacro()
+
+macro(boxsim_require_program var program debian_package)
+  find_program(${var} ${program})
+  if(NOT ${var})
+    message(FATAL_ERROR
+      "boxsim: program '${program}' was not found.\n"
+      "Install it with:  apt-get install -y ${debian_package}\n"
+      "(all dependencies at once: apt-get install -y ${BOXSIM_APT_PACKAGES})")
+  endif()
+endmacro()
+
+boxsim_require_package(Eigen3 libeigen3-dev 3.3 NO_MODULE)
+boxsim_require_package(GSL libgsl-dev)
+boxsim_require_package(nlohmann_json nlohmann-json3-dev 3.2)
+boxsim_require_package(CLI11 libcli11-dev)
+if(BOXSIM_BUILD_TESTS)
+  boxsim_require_package(Catch2 catch2 2)
+endif()
+if(BOXSIM_BUILD_FIGURES)
+  boxsim_require_program(GNUPLOT_EXECUTABLE gnuplot gnuplot-nox)
+endif()
+if(BOXSIM_BUILD_DOCS)
+  boxsim_require_program(DOXYGEN_EXECUTABLE doxygen doxygen)
+endif()

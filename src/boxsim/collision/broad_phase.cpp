@@ -1,0 +1,66 @@
+/// \file
+/// All-pairs broad phase with an axis-aligned bounding box reject (\thesis{§4.1}: the thesis'
+/// scenes are small enough to need no spatial subdivision). Pairs come out in increasing
+/// (i, j) order from two nested loops: no hashing, no pointer order, so the narrow phase, and
+/// everything after it, sees the same pairs in the same order on every run.
+#include "boxsim/collision/broad_phase.hpp"
+
+#include <algorithm>
+
+#include "boxsim/collision/contact_manifold.hpp"
+#include "boxsim/collision/separating_axis.hpp"
+
+namespace boxsim {
+
+void obbBounds(const Obb& box, double margin, Vec3& lo, Vec3& hi) {
+  // The box's reach along world axis k is sum_i |R_ki| h_i: each of its own axes contributes
+  // its half extent times how far that axis leans along k.
+  const Vec3 reach = box.axes.cwiseAbs() * box.halfExtents + Vec3::Constant(margin);
+  lo = box.center - reach;
+  hi = box.center + reach;
+}
+
+std::vector<std::pair<int, int>> candidatePairs(const World& world, double margin) {
+  const int n = static_cast<int>(world.bodies.size());
+  std::vector<Vec3> lo(n), hi(n);
+  for (int i = 0; i < n; ++i) obbBounds(Obb::of(world.bodies[i]), 0.0, lo[i], hi[i]);
+
+  std::vector<std::pair<int, int>> pairs;
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) {
+      // Two immovable bodies (ground and wall) never need a contact between them.
+      if (world.bodies[i].immovable && world.bodies[j].immovable) continue;
+      // Bounds closer than margin on every axis: touching bounds (gap 0) are candidates, so a
+      // box resting exactly on the ground is found with margin 0.
+      bool overlap = true;
+      for (int k = 0; k < 3 && overlap; ++k)
+        overlap = lo[j][k] - hi[i][k] <= margin && lo[i][k] - hi[j][k] <= margin;
+      if (overlap) pairs.emplace_back(i, j);
+    }
+  }
+  return pairs;
+}
+
+std::vector<ContactManifold> findContacts(const World& world, double margin) {
+  std::vector<ContactManifold> contacts;
+  for (const auto& [i, j] : candidatePairs(world, margin)) {
+    ContactManifold m = collideBoxes(Obb::of(world.bodies[i]), Obb::of(world.bodies[j]), margin);
+    if (m.count == 0) continue;
+    m.a = i;
+    m.b = j;
+    contacts.push_back(m);
+  }
+  return contacts;
+}
+
+bool anyIntersection(const World& world, double tolerance) {
+  // A negative tolerance asks about boxes closer than -tolerance, so widen the reject to match.
+  for (const auto& [i, j] : candidatePairs(world, std::max(0.0, -tolerance))) {
+    const SeparatingAxisResult sat =
+        separatingAxisTest(Obb::of(world.bodies[i]), Obb::of(world.bodies[j]));
+    if (sat.depth > tolerance) return true;
+  }
+  return false;
+}
+
+}  // namespace boxsim

@@ -1,0 +1,307 @@
+/// \file
+/// The contact manifold of two boxes from their separating axis (\thesis{§3.2}: "the
+/// intersection of two oriented rectangles in 2D").
+///
+/// Face contact: the reference face is the face of the box whose axis was chosen, facing the
+/// other box; the incident face is the other box's face most anti-parallel to it. Clipping the
+/// incident quad to the four side planes of the reference face (Sutherland-Hodgman) leaves at
+/// most 8 points; those below the reference face (depth > -margin) are kept, moved midway
+/// between the two surfaces, and, if more than 4, reduced to the 4 that keep the deepest point
+/// and the largest area. Edge-edge contact: one point midway between the closest points of the
+/// two support edges.
+///
+/// Box features, with corner k as in Obb::corner (bit i of k set: + along axis i):
+/// \verbatim
+///            2 +-----------+ 3
+///             /|          /|              axis 1 (y)
+///            / |         / |               |
+///         6 +-----------+ 7|               +--- axis 0 (x)
+///           |  |        |  |              /
+///           |0 +--------|--+ 1          axis 2 (z), towards the viewer
+///           | /         | /
+///           |/          |/
+///         4 +-----------+ 5
+///
+///   face f = 2*axis + (outward normal along +axis ? 1 : 0):  0 -x, 1 +x, 2 -y, 3 +y, 4 -z, 5 +z
+///   edge e = 4*d + s1 + 2*s2 for an edge along axis d, where s1 (s2) is 1 when the edge lies
+///            on the + side of axis (d+1)%3 ((d+2)%3).  e.g. edge 3 = corners 6-7, edge 4 = 0-2
+///
+///   A face seen from outside, axis m, u = axis (m+1)%3, v = axis (m+2)%3 (s = side of m):
+///
+///            v
+///            ^      vertex k = centre + s h_m a_m + (+-h_u a_u) + (+-h_v a_v)
+///     1 +----0----+ 0      0: (+u,+v)  1: (-u,+v)  2: (-u,-v)  3: (+u,-v)
+///       |         |     edge k runs from vertex k to vertex k+1 (mod 4)
+///       1         3  --> u
+///       |         |     side plane k of a reference face is the plane through its edge k,
+///     2 +----2----+ 3   perpendicular to the face
+/// \endverbatim
+///
+/// Feature id of a face-contact point (same features, same id):
+///   bits 0-2 and 3-5: the two lines the point lies on, in polygon order: 0..3 incident edge k,
+///   4..7 reference side plane k-4 (an unclipped incident vertex k is (k-1, k));
+///   bits 6-8 incident face; bits 9-11 reference face; bit 12 reference box (0 A, 1 B);
+///   bits 13-14 contact kind, 0. Edge-edge point: bits 0-3 edge of A, 4-7 edge of B,
+///   bits 13-14 = 1.
+#include "boxsim/collision/contact_manifold.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace boxsim {
+namespace {
+
+constexpr std::uint32_t kEdgeEdgeContact = 1u << 13;
+
+/// Point depths closer than this fraction of the reference face's larger half extent are
+/// treated as equal when choosing the deepest point to keep (unitless). Rounding of a unit box
+/// is ~1e-16 m, and a real tilt of 1e-9 rad is not worth tracking.
+constexpr double kDepthTieFraction = 1e-9;
+
+/// A vertex of the clipped polygon, with the two lines (incident edge or reference side plane,
+/// labels as in the file comment) that meet there: the one before it and the one after it.
+struct ClipVertex {
+  Vec3 p = Vec3::Zero();
+  int inLabel = 0;
+  int outLabel = 0;
+};
+
+/// A convex polygon of at most 8 vertices: a quad clipped by 4 planes gains at most one vertex
+/// per plane.
+struct ClipPolygon {
+  std::array<ClipVertex, 8> v{};
+  int count = 0;
+};
+
+/// Sutherland-Hodgman step: keeps the part of `in` where n . p <= offset. A crossing is made
+/// only for strictly opposite signs, so a vertex on the plane is never duplicated.
+ClipPolygon clipToPlane(const ClipPolygon& in, const Vec3& n, double offset, int planeLabel) {
+  ClipPolygon out;
+  for (int k = 0; k < in.count; ++k) {
+    const ClipVertex& P = in.v[k];
+    const ClipVertex& Q = in.v[(k + 1) % in.count];
+    const double dP = n.dot(P.p) - offset;
+    const double dQ = n.dot(Q.p) - offset;
+    if (dP <= 0.0) out.v[out.count++] = P;
+    if ((dP < 0.0 && dQ > 0.0) || (dP > 0.0 && dQ < 0.0)) {
+      ClipVertex X;
+      X.p = P.p + (dP / (dP - dQ)) * (Q.p - P.p);
+      // Leaving: the polygon goes on along the plane; entering: along the edge P-Q again.
+      X.inLabel = dP < 0.0 ? P.outLabel : planeLabel;
+      X.outLabel = dP < 0.0 ? planeLabel : P.outLabel;
+      out.v[out.count++] = X;
+    }
+  }
+  return out;
+}
+
+/// Area-like measure of triangle (a, b, q) seen along n: positive when counter-clockwise.
+double signedArea(const Vec3& a, const Vec3& b, const Vec3& q, const Vec3& n) {
+  return (b - a).cross(q - a).dot(n);
+}
+
+/// Chooses 4 of count (5..8) points: the deepest, then the point farthest from it across n,
+/// then the one making the largest triangle, then the one adding the most area to it.
+/// Depths within depthTie (m) of the deepest count as equally deep, and strict comparisons
+/// make the first index win every tie, so flush faces, whose depths differ only by rounding,
+/// keep the same points while the clip polygon keeps its shape. Returns the indices in
+/// increasing order, so the kept points stay in the clip polygon's cyclic order.
+std::array<int, 4> reduceToFour(const std::array<ContactPoint, 8>& pts, int count, const Vec3& n,
+                                double depthTie) {
+  std::array<bool, 8> used{};
+  auto take = [&](int k) { used[k] = true; return k; };
+  double deepest = pts[0].depth;
+  for (int k = 1; k < count; ++k) deepest = std::max(deepest, pts[k].depth);
+  int i0 = 0;
+  while (pts[i0].depth < deepest - depthTie) ++i0;
+  take(i0);
+  const Vec3& p0 = pts[i0].position;
+
+  int i1 = -1;
+  double best = -1.0;
+  for (int k = 0; k < count; ++k) {
+    if (used[k]) continue;
+    Vec3 d = pts[k].position - p0;
+    d -= n * n.dot(d);  // distance within the contact plane, not across it
+    if (d.squaredNorm() > best) { best = d.squaredNorm(); i1 = k; }
+  }
+  take(i1);
+  const Vec3& p1 = pts[i1].position;
+
+  int i2 = -1;
+  best = -1.0;
+  for (int k = 0; k < count; ++k) {
+    if (used[k]) continue;
+    const double area = std::abs(signedArea(p0, p1, pts[k].position, n));
+    if (area > best) { best = area; i2 = k; }
+  }
+  take(i2);
+
+  // Orient the triangle counter-clockwise about n; a point outside it adds the triangles it
+  // makes with the edges it sees, i.e. the edges with a negative signed area.
+  std::array<Vec3, 3> tri = {p0, p1, pts[i2].position};
+  if (signedArea(tri[0], tri[1], tri[2], n) < 0.0) std::swap(tri[1], tri[2]);
+  int i3 = -1;
+  best = -1.0;
+  for (int k = 0; k < count; ++k) {
+    if (used[k]) continue;
+    double added = 0.0;
+    for (int e = 0; e < 3; ++e)
+      added += std::max(0.0, -signedArea(tri[e], tri[(e + 1) % 3], pts[k].position, n));
+    if (added > best) { best = added; i3 = k; }
+  }
+  take(i3);
+
+  std::array<int, 4> keep = {i0, i1, i2, i3};
+  std::sort(keep.begin(), keep.end());
+  return keep;
+}
+
+/// Face contact: clip the incident face of one box against the reference face of the other.
+ContactManifold faceContact(const Obb& a, const Obb& b, const SeparatingAxisResult& sat,
+                            double margin, ContactManifold m) {
+  const bool refIsA = sat.kind == AxisKind::FaceA;
+  const Obb& ref = refIsA ? a : b;
+  const Obb& inc = refIsA ? b : a;
+  const int refAxis = refIsA ? sat.indexA : sat.indexB;
+  // The reference face's outward normal, towards the incident box (sat.normal is A to B).
+  const Vec3 nRef = refIsA ? sat.normal : Vec3(-sat.normal);
+  const bool refPlus = ref.axes.col(refAxis).dot(nRef) > 0.0;
+  const int refFace = 2 * refAxis + (refPlus ? 1 : 0);
+
+  // Incident face: the other box's face whose outward normal is most anti-parallel to nRef.
+  int incAxis = 0;
+  for (int k = 1; k < 3; ++k)
+    if (std::abs(inc.axes.col(k).dot(nRef)) > std::abs(inc.axes.col(incAxis).dot(nRef)))
+      incAxis = k;
+  const bool incPlus = inc.axes.col(incAxis).dot(nRef) < 0.0;
+  const int incFace = 2 * incAxis + (incPlus ? 1 : 0);
+
+  // The incident quad, vertex k between edges k-1 and k (file comment diagram).
+  static constexpr std::array<double, 4> kSignU = {1.0, -1.0, -1.0, 1.0};
+  static constexpr std::array<double, 4> kSignV = {1.0, 1.0, -1.0, -1.0};
+  const int iu = (incAxis + 1) % 3, iv = (incAxis + 2) % 3;
+  const Vec3 incCenter = inc.center + (incPlus ? 1.0 : -1.0) * inc.halfExtents[incAxis] *
+                                          inc.axes.col(incAxis);
+  ClipPolygon poly;
+  poly.count = 4;
+  for (int k = 0; k < 4; ++k) {
+    poly.v[k].p = incCenter + kSignU[k] * inc.halfExtents[iu] * inc.axes.col(iu) +
+                  kSignV[k] * inc.halfExtents[iv] * inc.axes.col(iv);
+    poly.v[k].inLabel = (k + 3) % 4;
+    poly.v[k].outLabel = k;
+  }
+
+  // Clip against the reference face's side planes, numbered like its edges: 0 +v, 1 -u,
+  // 2 -v, 3 +u.
+  const int ru = (refAxis + 1) % 3, rv = (refAxis + 2) % 3;
+  const Vec3 refCenter = ref.center + (refPlus ? 1.0 : -1.0) * ref.halfExtents[refAxis] *
+                                          ref.axes.col(refAxis);
+  const Vec3 u = ref.axes.col(ru);
+  const Vec3 v = ref.axes.col(rv);
+  const double hu = ref.halfExtents[ru];
+  const double hv = ref.halfExtents[rv];
+  poly = clipToPlane(poly, v, v.dot(refCenter) + hv, 4);
+  poly = clipToPlane(poly, Vec3(-u), -u.dot(refCenter) + hu, 5);
+  poly = clipToPlane(poly, Vec3(-v), -v.dot(refCenter) + hv, 6);
+  poly = clipToPlane(poly, u, u.dot(refCenter) + hu, 7);
+
+  // Keep the points below the reference face, placed midway between the two surfaces.
+  const std::uint32_t faceBits = (static_cast<std::uint32_t>(incFace) << 6) |
+                                 (static_cast<std::uint32_t>(refFace) << 9) |
+                                 ((refIsA ? 0u : 1u) << 12);
+  std::array<ContactPoint, 8> kept{};
+  int count = 0;
+  for (int k = 0; k < poly.count; ++k) {
+    const double depth = nRef.dot(refCenter - poly.v[k].p);
+    if (depth <= -margin) continue;
+    ContactPoint& c = kept[count++];
+    c.depth = depth;
+    c.position = poly.v[k].p + (0.5 * depth) * nRef;
+    c.featureId = faceBits | static_cast<std::uint32_t>(poly.v[k].inLabel) |
+                  (static_cast<std::uint32_t>(poly.v[k].outLabel) << 3);
+  }
+
+  if (count > 4) {
+    const double depthTie = kDepthTieFraction * std::max(hu, hv);
+    const std::array<int, 4> keep = reduceToFour(kept, count, nRef, depthTie);
+    for (int k = 0; k < 4; ++k) m.points[k] = kept[keep[k]];
+    count = 4;
+  } else {
+    for (int k = 0; k < count; ++k) m.points[k] = kept[k];
+  }
+  m.count = count;
+  if (count > 0) {
+    m.depth = m.points[0].depth;
+    for (int k = 1; k < count; ++k) m.depth = std::max(m.depth, m.points[k].depth);
+  }
+  return m;
+}
+
+/// The edge of `box` along axis d farthest along direction n (its support edge), as centre
+/// point and edge id (file comment diagram).
+void supportEdge(const Obb& box, int d, const Vec3& n, Vec3& mid, std::uint32_t& id) {
+  mid = box.center;
+  id = static_cast<std::uint32_t>(4 * d);
+  for (int s = 1; s <= 2; ++s) {
+    const int k = (d + s) % 3;
+    const bool plus = box.axes.col(k).dot(n) >= 0.0;
+    mid += (plus ? 1.0 : -1.0) * box.halfExtents[k] * box.axes.col(k);
+    if (plus) id += static_cast<std::uint32_t>(s);
+  }
+}
+
+/// Edge-edge contact: the midpoint of the closest points of the support edges of A (along
+/// +normal) and B (along -normal).
+ContactManifold edgeContact(const Obb& a, const Obb& b, const SeparatingAxisResult& sat,
+                            ContactManifold m) {
+  Vec3 pA, pB;
+  std::uint32_t edgeA = 0, edgeB = 0;
+  supportEdge(a, sat.indexA, sat.normal, pA, edgeA);
+  supportEdge(b, sat.indexB, Vec3(-sat.normal), pB, edgeB);
+  const Vec3 dA = a.axes.col(sat.indexA);
+  const Vec3 dB = b.axes.col(sat.indexB);
+  const double hA = a.halfExtents[sat.indexA];
+  const double hB = b.halfExtents[sat.indexB];
+
+  // Closest points pA + s dA, pB + t dB of the two segments (unit directions). The separating
+  // axis test only chose this axis if |dA x dB| >= parallelCutoff, so the denominator is > 0.
+  const Vec3 r = pA - pB;
+  const double cosAB = dA.dot(dB);
+  const double c = dA.dot(r);
+  const double f = dB.dot(r);
+  const double denom = dA.cross(dB).squaredNorm();
+  double s = std::clamp((cosAB * f - c) / denom, -hA, hA);
+  const double tFree = f + s * cosAB;  // the best t for this s
+  const double t = std::clamp(tFree, -hB, hB);
+  // Only a clamped t moves the best s; otherwise s is already optimal on its segment.
+  if (t != tFree) s = std::clamp(t * cosAB - c, -hA, hA);
+
+  ContactPoint& point = m.points[0];
+  point.position = 0.5 * (pA + s * dA + pB + t * dB);
+  point.depth = sat.depth;
+  point.featureId = kEdgeEdgeContact | edgeA | (edgeB << 4);
+  m.count = 1;
+  m.depth = sat.depth;
+  return m;
+}
+
+}  // namespace
+
+ContactManifold buildContactManifold(const Obb& a, const Obb& b, const SeparatingAxisResult& sat,
+                                     double margin) {
+  ContactManifold m;
+  m.normal = sat.normal;
+  m.kind = sat.kind;
+  m.depth = sat.depth;
+  if (sat.depth <= -margin) return m;
+  if (sat.kind == AxisKind::EdgeEdge) return edgeContact(a, b, sat, m);
+  return faceContact(a, b, sat, margin, m);
+}
+
+ContactManifold collideBoxes(const Obb& a, const Obb& b, double margin,
+                             const SeparatingAxisParams& params) {
+  return buildContactManifold(a, b, separatingAxisTest(a, b, params), margin);
+}
+
+}  // namespace boxsim

@@ -1,0 +1,35 @@
+/// \file
+/// Contact manifolds of two boxes: face contacts by clipping the incident face against the
+/// reference face (the oriented-rectangle intersection of \thesis{§3.2}), edge-edge contacts
+/// by the closest points of the two edges.
+#pragma once
+
+#include "boxsim/collision/contact.hpp"
+#include "boxsim/collision/separating_axis.hpp"
+
+namespace boxsim {
+
+/// Builds the contact manifold of boxes A and B from their separating-axis result.
+/// \param a, b     the boxes
+/// \param sat      separatingAxisTest(a, b)
+/// \param margin   m, >= 0: points whose depth is greater than -margin are kept, so touching
+///                 and nearly touching boxes also get a manifold
+/// \return the manifold with normal from A to B and at most 4 points (a face clip makes up to
+///         8, reduced to 4 keeping the deepest and the largest area); count == 0 when
+///         sat.depth <= -margin. depth is the deepest point's depth, or sat.depth when there
+///         is no point. Face contacts place each point midway between the reference face and
+///         the incident face; an edge-edge contact has one point, midway between the closest
+///         points of the two edges, with depth sat.depth. Feature ids encode the reference
+///         and incident faces and the two clip lines through the point (face contact) or the
+///         two edges (edge-edge); contact_manifold.cpp draws the numbering. The fields a and
+///         b are left at -1 for the caller to fill.
+/// \thesis{§3.2}; the clipping follows the reference/incident-face scheme of box2d-lite and
+/// ODE's dBoxBox, written anew.
+ContactManifold buildContactManifold(const Obb& a, const Obb& b, const SeparatingAxisResult& sat,
+                                     double margin = 0.0);
+
+/// separatingAxisTest followed by buildContactManifold: the narrow phase for one pair.
+ContactManifold collideBoxes(const Obb& a, const Obb& b, double margin = 0.0,
+                             const SeparatingAxisParams& params = {});
+
+}  // namespace boxsim

@@ -1,0 +1,35 @@
+#include "boxsim/core/newtonian_impulse.hpp"
+
+namespace boxsim {
+
+double relativeNormalVelocity(const RigidBody& a, const RigidBody& b, const Vec3& p,
+                              const Vec3& n) {
+  return n.dot(b.pointVelocity(p) - a.pointVelocity(p));
+}
+
+double applyNewtonianImpulse(RigidBody& a, RigidBody& b, const Vec3& p, const Vec3& n,
+                             double restitution) {
+  const double vMinus = relativeNormalVelocity(a, b, p, n);
+  if (vMinus >= 0.0) return 0.0;
+  const Vec3 ra = p - a.s.x;
+  const Vec3 rb = p - b.s.x;
+  const double denominator = a.invMass + b.invMass +
+                             n.dot((a.Iinv * ra.cross(n)).cross(ra)) +
+                             n.dot((b.Iinv * rb.cross(n)).cross(rb));
+  if (denominator <= 0.0) return 0.0;
+  const double j = -(1.0 + restitution) * vMinus / denominator;
+  const Vec3 impulse = j * n;
+  if (!a.immovable) {
+    a.s.P -= impulse;
+    a.s.L -= ra.cross(impulse);
+    a.updateDerived();
+  }
+  if (!b.immovable) {
+    b.s.P += impulse;
+    b.s.L += rb.cross(impulse);
+    b.updateDerived();
+  }
+  return j;
+}
+
+}  // namespace boxsim

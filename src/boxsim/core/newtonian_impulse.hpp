@@ -1,0 +1,26 @@
+/// \file
+/// The Newtonian collision impulse with a coefficient of restitution between two bodies, either
+/// of which may be immovable (\thesis{§3.3.2}; Witkin & Baraff, SIGGRAPH course notes
+/// "Physically Based Modeling", Rigid Body Simulation, §8, eq. 8-18).
+#pragma once
+
+#include "boxsim/core/rigid_body.hpp"
+
+namespace boxsim {
+
+/// Relative normal velocity of the material points of a and b at p along n (from a to b),
+/// m/s: n · (v_b(p) - v_a(p)). Negative when the bodies approach.
+double relativeNormalVelocity(const RigidBody& a, const RigidBody& b, const Vec3& p,
+                              const Vec3& n);
+
+/// Applies the frictionless Newtonian impulse j n at world point p (m) along the unit normal n
+/// (pointing from a to b) when the bodies approach there, so that the relative normal velocity
+/// becomes -restitution times what it was (Witkin & Baraff eq. 8-18):
+///   j = -(1 + e) v⁻ / (1/m_a + 1/m_b + n·(I_a⁻¹(r_a × n)) × r_a + n·(I_b⁻¹(r_b × n)) × r_b).
+/// \param restitution e in [0, 1]; 0 perfectly inelastic, 1 elastic
+/// \return the impulse magnitude j >= 0 (N s); 0 when the bodies separate or both are
+///         immovable. b receives +j n, a receives -j n.
+double applyNewtonianImpulse(RigidBody& a, RigidBody& b, const Vec3& p, const Vec3& n,
+                             double restitution);
+
+}  // namespace boxsim

@@ -1,0 +1,46 @@
+/// \file
+/// The one interface every technique implements, so that any scene runs under any technique
+/// and the same recorder and metrics compare them.
+#pragma once
+
+#include <map>
+#include <string>
+
+#include "boxsim/core/world.hpp"
+
+namespace boxsim {
+
+/// What one step did, for the recorder and for comparing techniques.
+struct StepStats {
+  int events = 0;      ///< collision events resolved (for chronological techniques: collision times found)
+  int bisections = 0;  ///< bisection steps of time-of-impact searches (each one a roll-back)
+  int restarts = 0;    ///< searches restarted on an earlier collision with a third body
+  int contacts = 0;    ///< contact manifolds touching at the end of the step
+  /// True when the step hit a documented work limit (e.g. the basic colliding technique's
+  /// events-per-step bound) and did less than the technique asks for.
+  bool limitReached = false;
+
+  StepStats& operator+=(const StepStats& o) {
+    events += o.events;
+    bisections += o.bisections;
+    restarts += o.restarts;
+    contacts = o.contacts;
+    limitReached = limitReached || o.limitReached;
+    return *this;
+  }
+};
+
+/// A technique that advances a world by one time step.
+class Stepper {
+ public:
+  virtual ~Stepper() = default;
+  /// The method name used on the command line and in output headers.
+  virtual std::string name() const = 0;
+  /// The technique's parameters as text, for the header of every output file
+  /// (name -> value, e.g. "integrator" -> "semi_implicit_euler").
+  virtual std::map<std::string, std::string> parameters() const { return {}; }
+  /// Advances `world` by dt seconds (dt > 0) and reports what it did.
+  virtual StepStats step(World& world, double dt) = 0;
+};
+
+}  // namespace boxsim

@@ -1,0 +1,62 @@
+#include "boxsim/core/world.hpp"
+
+#include <cassert>
+
+namespace boxsim {
+
+int World::add(const RigidBody& body, const std::string& name) {
+  bodies.push_back(body);
+  bodies.back().updateDerived();
+  names.push_back(name);
+  return static_cast<int>(bodies.size()) - 1;
+}
+
+int World::addGround(double topY, double halfSize, double halfThickness) {
+  RigidBody ground = RigidBody::immovableBox(Vec3(halfSize, halfThickness, halfSize));
+  ground.s.x = Vec3(0.0, topY - halfThickness, 0.0);
+  groundIndex = add(ground, "ground");
+  return groundIndex;
+}
+
+WorldState World::saveState() const {
+  WorldState state;
+  state.bodies.reserve(bodies.size());
+  for (const RigidBody& b : bodies) state.bodies.push_back(b.s);
+  return state;
+}
+
+void World::restoreState(const WorldState& state) {
+  assert(state.bodies.size() == bodies.size());
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    bodies[i].s = state.bodies[i];
+    bodies[i].updateDerived();
+  }
+}
+
+double World::kineticEnergy() const {
+  double e = 0.0;
+  for (const RigidBody& b : bodies) e += b.kineticEnergy();
+  return e;
+}
+
+double World::potentialEnergy() const {
+  double e = 0.0;
+  for (const RigidBody& b : bodies)
+    if (!b.immovable) e -= b.mass * gravity.dot(b.s.x);
+  return e;
+}
+
+Vec3 World::linearMomentum() const {
+  Vec3 p = Vec3::Zero();
+  for (const RigidBody& b : bodies)
+    if (!b.immovable) p += b.s.P;
+  return p;
+}
+
+int World::movableCount() const {
+  int n = 0;
+  for (const RigidBody& b : bodies) n += b.immovable ? 0 : 1;
+  return n;
+}
+
+}  // namespace boxsim

@@ -1,0 +1,53 @@
+/// \file
+/// The world: bodies (the ground among them, as an immovable box), gravity, and the global
+/// coefficient of restitution. Saving and restoring the whole state is the roll-back the
+/// basic colliding technique needs (\thesis{§2.1}).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "boxsim/core/rigid_body.hpp"
+
+namespace boxsim {
+
+/// The state of every body at one instant, in body order. Restoring it is a roll-back.
+struct WorldState {
+  std::vector<BodyState> bodies;
+  bool operator==(const WorldState& o) const { return bodies == o.bodies; }
+};
+
+/// Bodies, gravity and global material constants. Body indices are stable: a body's index is
+/// its identity everywhere (contacts, recorder columns, output files).
+class World {
+ public:
+  std::vector<RigidBody> bodies;      ///< all bodies, movable and immovable
+  std::vector<std::string> names;     ///< one name per body, for messages and output headers
+  Vec3 gravity = standardGravity();   ///< m/s^2
+  /// Global Newtonian coefficient of restitution, 0.9 as in \thesis{§3.3.2}.
+  double restitution = 0.9;
+  /// Index of the ground body, or -1 when the scene has none.
+  int groundIndex = -1;
+
+  /// Adds a body with a name; returns its index.
+  int add(const RigidBody& body, const std::string& name);
+  /// Adds the ground: an immovable box whose top face is the plane y = topY (m), of the
+  /// given horizontal half size (m) and thickness (m). Returns its index.
+  int addGround(double topY = 0.0, double halfSize = 50.0, double halfThickness = 0.5);
+
+  /// Copies out the state of every body.
+  WorldState saveState() const;
+  /// Restores a state saved from this world (same body count) and updates derived values.
+  void restoreState(const WorldState& state);
+
+  /// Total kinetic energy, J.
+  double kineticEnergy() const;
+  /// Total gravitational potential energy -m g·x of the movable bodies, J (zero at x = 0).
+  double potentialEnergy() const;
+  /// Total linear momentum of the movable bodies, kg m/s.
+  Vec3 linearMomentum() const;
+  /// Number of movable bodies.
+  int movableCount() const;
+};
+
+}  // namespace boxsim

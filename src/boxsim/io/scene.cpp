@@ -1,0 +1,363 @@
+#include "boxsim/io/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <initializer_list>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "boxsim/collision/separating_axis.hpp"
+#include "boxsim/io/scene_builders.hpp"
+
+namespace boxsim {
+
+namespace {
+
+using Json = nlohmann::json;
+constexpr double kPi = 3.14159265358979323846;
+/// Boxes may touch at the start (a stacked tower) but not overlap deeper than this, m.
+constexpr double kStartOverlapTolerance = 1e-9;
+
+/// One JSON value with its path, for reading values with errors that say where they were.
+class Node {
+ public:
+  Node(const Json& value, std::string path, const std::string& source)
+      : value_(value), path_(std::move(path)), source_(source) {}
+
+  [[noreturn]] void fail(const std::string& problem, const std::string& fix) const {
+    throw SceneError(source_ + ": " + (path_.empty() ? "/" : path_) + ": " + problem +
+                     ". Fix: " + fix);
+  }
+
+  const std::string& path() const { return path_; }
+  bool has(const char* key) const { return value_.contains(key); }
+  Node at(const char* key) const { return Node(value_.at(key), path_ + "/" + key, source_); }
+
+  void requireObject(const std::string& what) const {
+    if (!value_.is_object()) fail("expected " + what + " (a JSON object)", "write { ... } here");
+  }
+
+  void allowKeys(std::initializer_list<const char*> known) const {
+    for (auto it = value_.begin(); it != value_.end(); ++it) {
+      const bool ok = std::any_of(known.begin(), known.end(),
+                                  [&](const char* k) { return it.key() == k; });
+      if (ok) continue;
+      std::string list;
+      for (const char* k : known) list += std::string(list.empty() ? "" : ", ") + k;
+      Node(it.value(), path_ + "/" + it.key(), source_)
+          .fail("unknown key \"" + it.key() + "\"", "use one of: " + list);
+    }
+  }
+
+  double number() const {
+    if (!value_.is_number()) fail("expected a number, got " + describe(), "write a number");
+    const double x = value_.get<double>();
+    if (!std::isfinite(x)) fail("the number is not finite", "write a finite number");
+    return x;
+  }
+  double positive(const char* unit) const {
+    const double x = number();
+    if (!(x > 0.0))
+      fail("must be > 0 " + std::string(unit) + " (got " + text(x) + ")",
+           "give a positive value");
+    return x;
+  }
+  double nonNegative(const char* unit) const {
+    const double x = number();
+    if (x < 0.0)
+      fail("must be >= 0 " + std::string(unit) + " (got " + text(x) + ")",
+           "give zero or a positive value");
+    return x;
+  }
+  int count() const {
+    const double x = number();
+    if (x < 1.0 || x != std::floor(x) || x > 1e6)
+      fail("must be a whole number from 1 to 1000000 (got " + text(x) + ")",
+           "give a positive whole count");
+    return static_cast<int>(x);
+  }
+  bool boolean() const {
+    if (!value_.is_boolean()) fail("expected true or false, got " + describe(), "write true or false");
+    return value_.get<bool>();
+  }
+  std::string name() const {
+    if (!value_.is_string()) fail("expected a string, got " + describe(), "write a quoted name");
+    const std::string s = value_.get<std::string>();
+    const bool blank = std::any_of(s.begin(), s.end(), [](unsigned char c) { return std::isspace(c); });
+    if (s.empty() || blank) fail("names must be non-empty and free of white space", "use e.g. \"box_1\"");
+    return s;
+  }
+  std::string string() const {
+    if (!value_.is_string()) fail("expected a string, got " + describe(), "write a quoted string");
+    return value_.get<std::string>();
+  }
+  Vec3 vec3() const {
+    if (!value_.is_array() || value_.size() != 3)
+      fail("expected an array of 3 numbers, got " + describe(), "write [x, y, z]");
+    Vec3 v;
+    for (int i = 0; i < 3; ++i) v[i] = Node(value_[i], path_ + "/" + std::to_string(i), source_).number();
+    return v;
+  }
+  Vec3 positiveVec3(const char* unit) const {
+    const Vec3 v = vec3();
+    for (int i = 0; i < 3; ++i)
+      if (!(v[i] > 0.0))
+        Node(value_[i], path_ + "/" + std::to_string(i), source_)
+            .fail("must be > 0 " + std::string(unit) + " (got " + text(v[i]) + ")",
+                  "give positive half extents");
+    return v;
+  }
+  /// [w, x, y, z], non-zero, normalised.
+  Quat quaternion() const {
+    if (!value_.is_array() || value_.size() != 4)
+      fail("expected an array of 4 numbers [w, x, y, z], got " + describe(), "write [w, x, y, z]");
+    double c[4];
+    for (int i = 0; i < 4; ++i) c[i] = Node(value_[i], path_ + "/" + std::to_string(i), source_).number();
+    Quat q(c[0], c[1], c[2], c[3]);
+    if (q.norm() < 1e-12) fail("the quaternion must not be zero", "give a unit quaternion, e.g. [1, 0, 0, 0]");
+    q.normalize();
+    return q;
+  }
+  Vec3 nonZeroVec3(const char* what) const {
+    const Vec3 v = vec3();
+    if (v.norm() == 0.0) fail(std::string(what) + " must not be the zero vector", "give a direction");
+    return v;
+  }
+
+ private:
+  std::string describe() const {
+    std::string d = value_.dump();
+    if (d.size() > 40) d = d.substr(0, 37) + "...";
+    return std::string(value_.type_name()) + " " + d;
+  }
+  static std::string text(double x) {
+    std::ostringstream os;
+    os << x;
+    return os.str();
+  }
+
+  const Json& value_;
+  std::string path_;
+  const std::string& source_;
+};
+
+Quat readOrientation(const Node& node) {
+  node.requireObject(
+      "an orientation {\"axis\": [x, y, z], \"angle_deg\": a} or {\"quaternion\": [w, x, y, z]}");
+  node.allowKeys({"axis", "angle_deg", "quaternion"});
+  if (node.has("quaternion")) {
+    if (node.has("axis") || node.has("angle_deg"))
+      node.fail("give either \"quaternion\" or \"axis\" with \"angle_deg\", not both",
+                "remove one of them");
+    return node.at("quaternion").quaternion();
+  }
+  if (!node.has("axis") || !node.has("angle_deg"))
+    node.fail("an axis-angle orientation needs both \"axis\" and \"angle_deg\"",
+              "add the missing key");
+  const Vec3 axis = node.at("axis").nonZeroVec3("the rotation axis");
+  const double angle = node.at("angle_deg").number();
+  return Quat(Eigen::AngleAxisd(angle * kPi / 180.0, axis.normalized()));
+}
+
+void readBody(const Node& node, Scene& scene, std::set<std::string>& names) {
+  node.requireObject("a body");
+  node.allowKeys({"name", "half_extents", "mass", "position", "orientation", "velocity",
+                  "angular_velocity", "immovable"});
+  if (!node.has("half_extents")) node.fail("missing \"half_extents\"", "add \"half_extents\": [0.5, 0.5, 0.5]");
+  const Vec3 halfExtents = node.at("half_extents").positiveVec3("m");
+  const bool immovable = node.has("immovable") && node.at("immovable").boolean();
+  RigidBody body;
+  if (immovable) {
+    if (node.has("mass")) node.at("mass").fail("an immovable body has no mass", "remove \"mass\"");
+    body = RigidBody::immovableBox(halfExtents);
+  } else {
+    if (!node.has("mass"))
+      node.fail("missing \"mass\"", "add \"mass\" in kg, or \"immovable\": true");
+    body = RigidBody::box(halfExtents, node.at("mass").positive("kg"));
+  }
+  if (node.has("position")) body.s.x = node.at("position").vec3();
+  if (node.has("orientation")) body.s.q = readOrientation(node.at("orientation"));
+  body.updateDerived();
+  if (node.has("velocity") || node.has("angular_velocity")) {
+    if (immovable) node.fail("an immovable body cannot move", "remove its velocities");
+    if (node.has("velocity")) body.setVelocity(node.at("velocity").vec3());
+    if (node.has("angular_velocity")) body.setAngularVelocity(node.at("angular_velocity").vec3());
+  }
+  std::string name = "body_" + std::to_string(scene.world.bodies.size());
+  if (node.has("name")) name = node.at("name").name();
+  if (!names.insert(name).second)
+    node.at("name").fail("the name \"" + name + "\" is used twice", "give each body its own name");
+  scene.world.add(body, name);
+  scene.origins.push_back(node.path());
+}
+
+void readBuilder(const Node& node, Scene& scene, std::set<std::string>& names) {
+  node.requireObject("a builder");
+  if (!node.has("type"))
+    node.fail("missing \"type\"", "add \"type\": one of die, tower, pyramid, clump");
+  const std::string type = node.at("type").string();
+  const int before = static_cast<int>(scene.world.bodies.size());
+  const auto size = [&](double fallback) { return node.has("size") ? node.at("size").positive("m") : fallback; };
+  const auto mass = [&](double fallback) { return node.has("mass") ? node.at("mass").positive("kg") : fallback; };
+  if (type == "die") {
+    node.allowKeys({"type", "size", "mass", "position", "tilt_deg", "tilt_axis", "velocity", "angular_velocity"});
+    DieSpec spec;
+    spec.size = size(spec.size);
+    spec.mass = mass(spec.mass);
+    if (node.has("position")) spec.position = node.at("position").vec3();
+    if (node.has("tilt_deg")) spec.tiltDeg = node.at("tilt_deg").number();
+    if (node.has("tilt_axis")) spec.tiltAxis = node.at("tilt_axis").nonZeroVec3("the tilt axis");
+    if (node.has("velocity")) spec.velocity = node.at("velocity").vec3();
+    if (node.has("angular_velocity")) spec.angularVelocity = node.at("angular_velocity").vec3();
+    addDie(scene.world, spec);
+  } else if (type == "tower") {
+    node.allowKeys({"type", "count", "size", "mass", "origin", "gap"});
+    TowerSpec spec;
+    if (node.has("count")) spec.count = node.at("count").count();
+    spec.size = size(spec.size);
+    spec.mass = mass(spec.mass);
+    if (node.has("origin")) spec.origin = node.at("origin").vec3();
+    if (node.has("gap")) spec.gap = node.at("gap").nonNegative("m");
+    addTower(scene.world, spec);
+  } else if (type == "pyramid") {
+    node.allowKeys({"type", "base", "size", "mass", "origin", "gap"});
+    PyramidSpec spec;
+    if (node.has("base")) spec.base = node.at("base").count();
+    spec.size = size(spec.size);
+    spec.mass = mass(spec.mass);
+    if (node.has("origin")) spec.origin = node.at("origin").vec3();
+    if (node.has("gap")) spec.gap = node.at("gap").nonNegative("m");
+    addPyramid(scene.world, spec);
+  } else if (type == "clump") {
+    node.allowKeys({"type", "count", "size", "mass", "spacing", "center", "speed"});
+    ClumpSpec spec;
+    if (node.has("count")) spec.count = node.at("count").count();
+    spec.size = size(spec.size);
+    spec.mass = mass(spec.mass);
+    if (node.has("spacing")) spec.spacing = node.at("spacing").positive("m");
+    if (node.has("center")) spec.center = node.at("center").vec3();
+    if (node.has("speed")) spec.speed = node.at("speed").number();
+    if (!(spec.spacing > spec.size))
+      node.at("spacing").fail("the spacing must exceed the cube size so the cubes start apart",
+                              "make \"spacing\" larger than \"size\"");
+    addClump(scene.world, spec);
+  } else {
+    node.at("type").fail("unknown builder type \"" + type + "\"",
+                         "use one of die, tower, pyramid, clump");
+  }
+  for (std::size_t i = before; i < scene.world.bodies.size(); ++i) {
+    // Builders name their boxes by role ("tower_3"); a second builder of the same kind gets
+    // the body index appended so that every name stays unique.
+    std::string& name = scene.world.names[i];
+    if (!names.insert(name).second) {
+      name += "_" + std::to_string(i);
+      names.insert(name);
+    }
+    scene.origins.push_back(node.path() + " (" + type + " box " + std::to_string(i - before) + ")");
+  }
+}
+
+void checkNoOverlap(const Scene& scene) {
+  const World& w = scene.world;
+  for (std::size_t i = 0; i < w.bodies.size(); ++i)
+    for (std::size_t j = i + 1; j < w.bodies.size(); ++j) {
+      if (w.bodies[i].immovable && w.bodies[j].immovable) continue;
+      const SeparatingAxisResult sat =
+          separatingAxisTest(Obb::of(w.bodies[i]), Obb::of(w.bodies[j]));
+      if (sat.intersecting && sat.depth > kStartOverlapTolerance) {
+        std::ostringstream os;
+        os << scene.source << ": " << scene.origins[i] << " and " << scene.origins[j]
+           << ": the boxes \"" << w.names[i] << "\" and \"" << w.names[j]
+           << "\" overlap by " << sat.depth
+           << " m at the start. Fix: move them apart (touching is allowed)";
+        throw SceneError(os.str());
+      }
+    }
+}
+
+/// Line and column (1-based) of a byte offset in text.
+std::pair<int, int> lineColumn(const std::string& text, std::size_t offset) {
+  int line = 1, column = 1;
+  for (std::size_t i = 0; i < offset && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  return {line, column};
+}
+
+}  // namespace
+
+Scene parseScene(const std::string& text, const std::string& source) {
+  Json root;
+  try {
+    root = Json::parse(text);
+  } catch (const Json::parse_error& e) {
+    const std::pair<int, int> lc = lineColumn(text, e.byte > 0 ? e.byte - 1 : 0);
+    std::string what = e.what();
+    const std::size_t colon = what.rfind(": ");
+    if (colon != std::string::npos) what = what.substr(colon + 2);
+    throw SceneError(source + ":" + std::to_string(lc.first) + ":" + std::to_string(lc.second) +
+                     ": malformed JSON: " + what + ". Fix: correct the JSON syntax there");
+  } catch (const Json::exception& e) {
+    throw SceneError(source + ": malformed JSON: " + std::string(e.what()) +
+                     ". Fix: correct the number or text it names");
+  }
+  Scene scene;
+  scene.source = source;
+  const Node top(root, "", scene.source);
+  top.requireObject("a scene");
+  top.allowKeys({"description", "gravity", "restitution", "ground", "bodies", "builders"});
+  if (top.has("description")) scene.description = top.at("description").string();
+  if (top.has("gravity")) scene.world.gravity = top.at("gravity").vec3();
+  if (top.has("restitution")) {
+    const Node e = top.at("restitution");
+    scene.world.restitution = e.number();
+    if (scene.world.restitution < 0.0 || scene.world.restitution > 1.0)
+      e.fail("restitution must lie in [0, 1]", "use 0.9 as the thesis (§3.3.2)");
+  }
+  if (top.has("ground")) {
+    const Node g = top.at("ground");
+    g.requireObject("the ground {\"height\": 0, \"half_size\": 50, \"half_thickness\": 0.5}");
+    g.allowKeys({"height", "half_size", "half_thickness"});
+    const double height = g.has("height") ? g.at("height").number() : 0.0;
+    const double halfSize = g.has("half_size") ? g.at("half_size").positive("m") : 50.0;
+    const double halfThickness = g.has("half_thickness") ? g.at("half_thickness").positive("m") : 0.5;
+    scene.world.addGround(height, halfSize, halfThickness);
+    scene.origins.push_back("/ground");
+  }
+  std::set<std::string> names;
+  if (top.has("bodies")) {
+    const Node list = top.at("bodies");
+    const Json& array = root.at("bodies");
+    if (!array.is_array()) list.fail("expected an array of bodies", "write \"bodies\": [ {...}, ... ]");
+    for (std::size_t i = 0; i < array.size(); ++i)
+      readBody(Node(array[i], "/bodies/" + std::to_string(i), scene.source), scene, names);
+  }
+  if (top.has("builders")) {
+    const Node list = top.at("builders");
+    const Json& array = root.at("builders");
+    if (!array.is_array()) list.fail("expected an array of builders", "write \"builders\": [ {...}, ... ]");
+    for (std::size_t i = 0; i < array.size(); ++i)
+      readBuilder(Node(array[i], "/builders/" + std::to_string(i), scene.source), scene, names);
+  }
+  if (scene.world.movableCount() == 0)
+    top.fail("the scene has no movable body", "add a body to \"bodies\" or a builder to \"builders\"");
+  checkNoOverlap(scene);
+  return scene;
+}
+
+Scene loadScene(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError(path + ": cannot open the scene file. Fix: check the path");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parseScene(text.str(), path);
+}
+
+}  // namespace boxsim

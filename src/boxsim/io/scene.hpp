@@ -1,0 +1,40 @@
+/// \file
+/// Scene files: JSON describing the ground, gravity, restitution, bodies and named builders.
+/// The schema is documented in docs/scene_format.md; every error names the file, the line and
+/// column (malformed JSON) or the JSON path (bad values), and what to change.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "boxsim/core/world.hpp"
+
+namespace boxsim {
+
+/// A scene that could not be loaded. what() reads "FILE: LOCATION: problem. Fix: ...".
+class SceneError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// A loaded scene: the world and where each body came from.
+struct Scene {
+  World world;
+  std::string source;       ///< file name (or the name given to parseScene)
+  std::string description;  ///< the scene's "description", if any
+  /// For each body of world, the JSON path it came from ("/bodies/0", "/builders/1 (tower
+  /// box 3)", "/ground"), for error messages.
+  std::vector<std::string> origins;
+};
+
+/// Parses and validates scene text. `source` names it in error messages.
+/// Checks: well-formed JSON; only known keys; numbers finite; masses, extents, counts and
+/// sizes positive; quaternions non-zero; names free of white space and unique; no two boxes
+/// overlapping at the start (touching is allowed). Throws SceneError.
+Scene parseScene(const std::string& text, const std::string& source);
+
+/// Reads and parses a scene file; throws SceneError (also when the file cannot be read).
+Scene loadScene(const std::string& path);
+
+}  // namespace boxsim

@@ -1,0 +1,67 @@
+/// \file
+/// Named builders for the thesis' scenes: the die (\thesis{§4.2}), a tower, the one-box-deep
+/// pyramid of Fig. 6.6 and the clump of Fig. 6.7 (\thesis{§6.1}). Each adds bodies to a world
+/// and returns how many it added; all bodies are cubes of one size and mass (\thesis{§3.1}).
+#pragma once
+
+#include "boxsim/core/world.hpp"
+
+namespace boxsim {
+
+/// A cube dropped with a tilt, the die of \thesis{§4.2}.
+struct DieSpec {
+  double size = 1.0;                  ///< edge length, m
+  double mass = 1.0;                  ///< kg
+  Vec3 position = Vec3(0.0, 2.0, 0.0);  ///< initial centre, m
+  double tiltDeg = 10.0;              ///< tilt angle, degrees
+  Vec3 tiltAxis = Vec3(1.0, 0.0, 1.0);  ///< tilt axis (normalised by the builder)
+  Vec3 velocity = Vec3::Zero();       ///< m/s
+  Vec3 angularVelocity = Vec3::Zero();  ///< rad/s
+};
+
+/// `count` cubes stacked on the plane y = baseY, centred on (x, z) = (origin.x, origin.z),
+/// with a vertical gap (m) between neighbours.
+struct TowerSpec {
+  int count = 10;
+  double size = 1.0;   ///< m
+  double mass = 1.0;   ///< kg
+  Vec3 origin = Vec3::Zero();  ///< bottom centre of the tower, m
+  double gap = 0.0;    ///< m, >= 0
+};
+
+/// A one-box-deep pyramid: rows of base, base-1, ..., 1 cubes in the x-y plane, resting on
+/// y = origin.y, centred on origin.x, at depth origin.z (\thesis{Fig. 6.6}).
+struct PyramidSpec {
+  int base = 10;
+  double size = 1.0;   ///< m
+  double mass = 1.0;   ///< kg
+  Vec3 origin = Vec3::Zero();  ///< bottom centre, m
+  double gap = 0.0;    ///< horizontal gap between neighbours in a row, m, >= 0
+};
+
+/// `count` cubes on a regular grid of the given spacing centred on `center`, each moving at
+/// `speed` towards the centre (\thesis{Fig. 6.7}). The grid is nx × ny × nz = count with the
+/// three as close to equal as count allows (100 = 5 × 5 × 4, 1000 = 10³).
+struct ClumpSpec {
+  int count = 100;
+  double size = 1.0;     ///< m
+  double mass = 1.0;     ///< kg
+  double spacing = 2.0;  ///< centre-to-centre distance, m, > size
+  Vec3 center = Vec3(0.0, 20.0, 0.0);  ///< m
+  double speed = 5.0;    ///< m/s towards the centre
+};
+
+/// Adds the die; returns 1. Throws std::invalid_argument on non-positive size or mass.
+int addDie(World& world, const DieSpec& spec);
+/// Adds the tower; returns spec.count.
+int addTower(World& world, const TowerSpec& spec);
+/// Adds the pyramid; returns base (base + 1) / 2.
+int addPyramid(World& world, const PyramidSpec& spec);
+/// Adds the clump; returns spec.count.
+int addClump(World& world, const ClumpSpec& spec);
+
+/// The grid dimensions the clump builder uses for `count` cubes (nx >= ny >= nz, product
+/// == count, as close to a cube as possible).
+Eigen::Vector3i clumpGrid(int count);
+
+}  // namespace boxsim

@@ -1,0 +1,69 @@
+/// \file
+/// Recorded trajectories in memory and as gnuplot `.dat` files.
+///
+/// File format (plain text, one frame per row, whitespace separated):
+/// \code
+/// # boxsim trajectory 1
+/// # scene: chapters/basic_colliding/scenes/die.json
+/// # method: basic_colliding
+/// # dt: 0.016666666666666666
+/// # seed: 0
+/// # body 0 ground half_extents 50 0.5 50 immovable 1
+/// # body 1 die half_extents 0.5 0.5 0.5 immovable 0
+/// # columns: t kinetic potential total contacts events bisections b0_x b0_y b0_z b0_qw b0_qx b0_qy b0_qz b1_x ...
+/// 0 0 4.905 4.905 0 0 0 0 -0.5 0 1 0 0 0 0 1 0 ...
+/// \endcode
+/// Every `# key: value` line is a parameter of the run. The `# body` lines give each body's
+/// name, half extents (m) and whether it is immovable. Columns: time (s), kinetic, potential
+/// and total energy (J), contact count, collision events and bisection steps in the frame,
+/// then position (m) and unit quaternion (w, x, y, z) of every body, immovable ones included.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "boxsim/core/math.hpp"
+
+namespace boxsim {
+
+/// A body as a trajectory file describes it.
+struct TrajectoryBody {
+  std::string name;
+  Vec3 halfExtents = Vec3::Constant(0.5);  ///< m
+  bool immovable = false;
+};
+
+/// One recorded frame.
+struct TrajectoryFrame {
+  double t = 0.0;          ///< s
+  double kinetic = 0.0;    ///< J
+  double potential = 0.0;  ///< J
+  int contacts = 0;        ///< contact points (or colliding pairs) at the end of the frame
+  int events = 0;          ///< collision events (impulses) during the frame
+  int bisections = 0;      ///< bisection steps (time-of-impact searches) during the frame
+  std::vector<Vec3> x;     ///< position of each body, m
+  std::vector<Quat> q;     ///< orientation of each body
+};
+
+/// A whole recorded run.
+struct Trajectory {
+  /// Run parameters, written as `# key: value` header lines (scene, method, dt, seed, ...),
+  /// in key order.
+  std::map<std::string, std::string> meta;
+  std::vector<TrajectoryBody> bodies;
+  std::vector<TrajectoryFrame> frames;
+};
+
+/// Formats a trajectory in the file format above (full double precision, round-trippable).
+std::string formatTrajectory(const Trajectory& trajectory);
+
+/// Writes formatTrajectory() to path, whole or not at all (temporary file, then rename).
+/// Throws std::runtime_error naming the path when it cannot.
+void writeTrajectory(const std::string& path, const Trajectory& trajectory);
+
+/// Reads a trajectory file. Throws std::runtime_error naming the file and line on a malformed
+/// file (missing header, wrong column count, non-numeric field).
+Trajectory readTrajectory(const std::string& path);
+
+}  // namespace boxsim

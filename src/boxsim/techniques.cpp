@@ -1,0 +1,22 @@
+#include "boxsim/techniques.hpp"
+
+#include <stdexcept>
+
+#include "boxsim/basic_colliding/basic_colliding.hpp"
+
+namespace boxsim {
+
+std::vector<std::string> methodNames() { return {"basic_colliding"}; }
+
+std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueOptions& options) {
+  if (method == "basic_colliding") {
+    BasicCollidingParams params;
+    if (options.integrator) params.integrator = *options.integrator;
+    return std::make_unique<BasicCollidingStepper>(params);
+  }
+  std::string known;
+  for (const std::string& m : methodNames()) known += (known.empty() ? "" : ", ") + m;
+  throw std::invalid_argument("unknown method '" + method + "'; known methods: " + known);
+}
+
+}  // namespace boxsim
