@@ -291,6 +291,11 @@ std::pair<int, int> lineColumn(const std::string& text, std::size_t offset) {
   return {line, column};
 }
 
+[[noreturn]] void throwNonFinite(const std::string& place, const std::string& literal) {
+  throw SceneError(place + ": the number " + literal +
+                   " is not finite (it overflows a double). Fix: write a finite number");
+}
+
 }  // namespace
 
 Scene parseScene(const std::string& text, const std::string& source) {
@@ -304,9 +309,25 @@ Scene parseScene(const std::string& text, const std::string& source) {
     if (colon != std::string::npos) what = what.substr(colon + 2);
     throw SceneError(source + ":" + std::to_string(lc.first) + ":" + std::to_string(lc.second) +
                      ": malformed JSON: " + what + ". Fix: correct the JSON syntax there");
+  } catch (const Json::out_of_range& e) {
+    // A number literal too large for a double (1e400): nlohmann_json names the literal but not
+    // its place, so find it in the text.
+    const std::string what = e.what();
+    const std::size_t open = what.find("parsing '");
+    std::string where;
+    if (open != std::string::npos) {
+      const std::string literal = what.substr(open + 9, what.find('\'', open + 9) - open - 9);
+      const std::size_t at = text.find(literal);
+      if (!literal.empty() && at != std::string::npos) {
+        const std::pair<int, int> lc = lineColumn(text, at);
+        where = ":" + std::to_string(lc.first) + ":" + std::to_string(lc.second);
+        throwNonFinite(source + where, literal);
+      }
+    }
+    throw SceneError(source + ": malformed JSON: " + what + ". Fix: correct the number it names");
   } catch (const Json::exception& e) {
     throw SceneError(source + ": malformed JSON: " + std::string(e.what()) +
-                     ". Fix: correct the number or text it names");
+                     ". Fix: correct the JSON there");
   }
   Scene scene;
   scene.source = source;

@@ -1,0 +1,110 @@
+// End-to-end checks of the `boxsim` command: a good run writes a trajectory, every bad input
+// exits non-zero with an error naming the file and the place, and leaves no output file.
+#include <sys/wait.h>
+
+#include <catch2/catch.hpp>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "boxsim/io/trajectory.hpp"
+
+namespace fs = std::filesystem;
+using Catch::Matchers::Contains;
+
+namespace {
+
+struct Result {
+  int status;
+  std::string stderrText;
+};
+
+const fs::path kDir = fs::temp_directory_path() / "boxsim_cli_test";
+
+Result runBoxsim(const std::string& arguments) {
+  const fs::path errPath = kDir / "stderr.txt";
+  const std::string command = std::string(BOXSIM_BINARY_DIR) + "/boxsim " + arguments + " 2> " +
+                              errPath.string() + " > /dev/null";
+  const int raw = std::system(command.c_str());
+  std::ifstream in(errPath);
+  std::stringstream text;
+  text << in.rdbuf();
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, text.str()};
+}
+
+std::string writeScene(const std::string& name, const std::string& text) {
+  const fs::path p = kDir / name;
+  std::ofstream(p) << text;
+  return p.string();
+}
+
+void freshDir() {
+  fs::remove_all(kDir);
+  fs::create_directories(kDir);
+}
+
+}  // namespace
+
+TEST_CASE("boxsim run writes the trajectory of the die scene", "[cli]") {
+  freshDir();
+  const std::string out = (kDir / "die.dat").string();
+  const Result r = runBoxsim("run " + std::string(BOXSIM_SOURCE_DIR) +
+                             "/chapters/basic_colliding/scenes/die.json --method basic_colliding "
+                             "--dt 0.0166666 --duration 1 --out " + out);
+  CHECK(r.status == 0);
+  const boxsim::Trajectory t = boxsim::readTrajectory(out);
+  CHECK(t.frames.size() == 61);
+  CHECK(t.meta.at("method") == "basic_colliding");
+  CHECK(t.meta.at("integrator") == "semi_implicit_euler");
+  CHECK(t.meta.count("seed") == 1);
+}
+
+TEST_CASE("Every bad scene exits non-zero with its error and writes nothing", "[cli][input]") {
+  freshDir();
+  const std::string body = R"({"half_extents": [0.5,0.5,0.5], "mass": 1, "position": [0,3,0]})";
+  struct Case {
+    const char* file;
+    std::string text;
+    const char* expected;
+  };
+  const Case cases[] = {
+      {"malformed.json", "{\n \"bodies\": [\n", "malformed.json:3:"},
+      {"unknown_key.json", R"({"bodies": [{"half_extents": [1,1,1], "mass": 1, "colour": "red"}]})",
+       "/bodies/0/colour: unknown key"},
+      {"non_finite.json", R"({"bodies": [{"half_extents": [1,1,1], "mass": 1, "position": [0, 1e400, 0]}]})",
+       "non_finite.json"},
+      {"negative_mass.json", R"({"bodies": [{"half_extents": [1,1,1], "mass": -1}]})",
+       "/bodies/0/mass: must be > 0 kg"},
+      {"zero_extent.json", R"({"bodies": [{"half_extents": [1,0,1], "mass": 1}]})",
+       "/bodies/0/half_extents/1: must be > 0 m"},
+      {"overlap.json", "{\"bodies\": [" + body + "," + body + "]}", "overlap"},
+  };
+  for (const Case& c : cases) {
+    const std::string scene = writeScene(c.file, c.text);
+    const std::string out = (kDir / (std::string(c.file) + ".dat")).string();
+    const Result r = runBoxsim("run " + scene + " --duration 0.1 --out " + out);
+    INFO(c.file << ": " << r.stderrText);
+    CHECK(r.status != 0);
+    CHECK_THAT(r.stderrText, Contains(c.expected));
+    CHECK_THAT(r.stderrText, Contains(c.file));
+    CHECK_FALSE(fs::exists(out));
+  }
+}
+
+TEST_CASE("An unknown method or a bad time step exits non-zero and writes nothing", "[cli][input]") {
+  freshDir();
+  const std::string scene = std::string(BOXSIM_SOURCE_DIR) + "/chapters/basic_colliding/scenes/die.json";
+  const std::string out = (kDir / "x.dat").string();
+  const Result method = runBoxsim("run " + scene + " --method teleport --out " + out);
+  CHECK(method.status != 0);
+  CHECK_THAT(method.stderrText, Contains("unknown method 'teleport'"));
+  CHECK_THAT(method.stderrText, Contains("basic_colliding"));
+  const Result dt = runBoxsim("run " + scene + " --dt -1 --out " + out);
+  CHECK(dt.status != 0);
+  CHECK_THAT(dt.stderrText, Contains("--dt"));
+  CHECK_FALSE(fs::exists(out));
+  const Result missing = runBoxsim("run " + (kDir / "nope.json").string() + " --out " + out);
+  CHECK(missing.status != 0);
+  CHECK_THAT(missing.stderrText, Contains("nope.json"));
+}

@@ -1,0 +1,169 @@
+// Verification of scene loading (every kind of bad input gets an error that names the file,
+// the place and the fix), the named builders, trajectory files and atomic output.
+#include <catch2/catch.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "boxsim/io/atomic_file.hpp"
+#include "boxsim/io/scene.hpp"
+#include "boxsim/io/scene_builders.hpp"
+#include "boxsim/io/trajectory.hpp"
+#include "boxsim/techniques.hpp"
+
+using namespace boxsim;
+using Catch::Matchers::Contains;
+
+namespace {
+std::string errorOf(const std::string& text) {
+  try {
+    parseScene(text, "bad.json");
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+const std::string kBody = R"({"half_extents": [0.5, 0.5, 0.5], "mass": 1, "position": [0, 3, 0]})";
+}  // namespace
+
+TEST_CASE("Malformed JSON is reported with file, line and column", "[io][input]") {
+  const std::string e = errorOf("{\n  \"bodies\": [\n    {\"mass\": 1,,}\n  ]\n}");
+  CHECK_THAT(e, Contains("bad.json:3:"));
+  CHECK_THAT(e, Contains("malformed JSON"));
+  CHECK_THAT(e, Contains("Fix:"));
+}
+
+TEST_CASE("Unknown keys are reported with their JSON path and the known keys", "[io][input]") {
+  const std::string e = errorOf(R"({"bodies": [{"half_extents": [1,1,1], "masss": 1}]})");
+  CHECK_THAT(e, Contains("bad.json: /bodies/0/masss: unknown key"));
+  CHECK_THAT(e, Contains("mass"));
+  CHECK_THAT(errorOf(R"({"gravty": [0, -9.81, 0]})"), Contains("/gravty: unknown key"));
+}
+
+TEST_CASE("Non-finite numbers are rejected", "[io][input]") {
+  // JSON has no NaN or infinity literal; an overflowing literal is the way one gets in.
+  const std::string e = errorOf(R"({"bodies": [{"half_extents": [0.5,0.5,0.5], "mass": 1e999}]})");
+  CHECK_THAT(e, Contains("bad.json"));
+  CHECK(e != "(no error)");
+}
+
+TEST_CASE("Non-positive masses and extents are rejected with the value and the fix", "[io][input]") {
+  const std::string mass = errorOf(R"({"bodies": [{"half_extents": [0.5,0.5,0.5], "mass": -2}]})");
+  CHECK_THAT(mass, Contains("/bodies/0/mass: must be > 0 kg (got -2)"));
+  CHECK_THAT(mass, Contains("Fix:"));
+  const std::string extent = errorOf(R"({"bodies": [{"half_extents": [0.5,0,0.5], "mass": 1}]})");
+  CHECK_THAT(extent, Contains("/bodies/0/half_extents/1: must be > 0 m"));
+  CHECK_THAT(errorOf(R"({"builders": [{"type": "tower", "count": 0}]})"), Contains("/builders/0/count"));
+  CHECK_THAT(errorOf(R"({"builders": [{"type": "tower", "size": -1}]})"), Contains("/builders/0/size"));
+}
+
+TEST_CASE("Wrong types, unknown builders and empty scenes are rejected", "[io][input]") {
+  CHECK_THAT(errorOf(R"({"bodies": [{"half_extents": "big", "mass": 1}]})"),
+             Contains("/bodies/0/half_extents: expected an array of 3 numbers"));
+  CHECK_THAT(errorOf(R"({"builders": [{"type": "castle"}]})"),
+             Contains("/builders/0/type: unknown builder type \"castle\""));
+  CHECK_THAT(errorOf(R"({"ground": {}})"), Contains("no movable body"));
+  CHECK_THAT(errorOf(R"([1, 2])"), Contains("expected a scene"));
+  CHECK_THAT(errorOf("{\"bodies\": [" + kBody + ", " + kBody + "]}"), Contains("overlap"));
+}
+
+TEST_CASE("Boxes overlapping at the start are named; touching boxes are accepted", "[io][input]") {
+  const std::string e = errorOf(R"({"ground": {}, "bodies": [
+      {"name": "a", "half_extents": [0.5,0.5,0.5], "mass": 1, "position": [0, 0.4, 0]}]})");
+  CHECK_THAT(e, Contains("/ground and /bodies/0"));
+  CHECK_THAT(e, Contains("overlap by 0.1"));
+  // A tower stands with its boxes exactly touching.
+  const Scene tower = parseScene(R"({"ground": {}, "builders": [{"type": "tower", "count": 5}]})", "t.json");
+  CHECK(tower.world.bodies.size() == 6);
+}
+
+TEST_CASE("An unknown method is rejected with the list of known methods", "[io][input]") {
+  CHECK_THROWS_WITH(makeStepper("magic"), Contains("unknown method 'magic'") && Contains("basic_colliding"));
+}
+
+TEST_CASE("The shipped die scene loads as the thesis describes", "[io][scene]") {
+  const Scene s = loadScene(std::string(BOXSIM_SOURCE_DIR) + "/chapters/basic_colliding/scenes/die.json");
+  REQUIRE(s.world.bodies.size() == 2);
+  CHECK(s.world.groundIndex == 0);
+  CHECK(s.world.restitution == 0.9);
+  const RigidBody& die = s.world.bodies[1];
+  // Tilted by 10 degrees: the angle between its y axis and the world's.
+  CHECK(std::acos(die.R.col(1).dot(Vec3::UnitY())) * 180.0 / 3.14159265358979 == Approx(10.0));
+  CHECK(die.mass == 1.0);
+}
+
+TEST_CASE("The builders make the thesis' scenes", "[io][scene]") {
+  World w;
+  CHECK(addPyramid(w, PyramidSpec{10}) == 55);
+  CHECK(w.bodies.back().s.x.y() == Approx(9.5));  // apex: tenth row
+  CHECK(clumpGrid(100) == Eigen::Vector3i(5, 5, 4));
+  CHECK(clumpGrid(1000) == Eigen::Vector3i(10, 10, 10));
+  World c;
+  addClump(c, ClumpSpec{});
+  Vec3 centroid = Vec3::Zero(), momentum = Vec3::Zero();
+  for (const RigidBody& b : c.bodies) {
+    centroid += b.s.x / 100.0;
+    momentum += b.s.P;
+    CHECK(b.v.norm() == Approx(5.0));  // no cube sits exactly at the centre of a 5x5x4 grid
+  }
+  CHECK((centroid - Vec3(0, 20, 0)).norm() < 1e-12);
+  CHECK(momentum.norm() < 1e-12);  // everything moves towards the centre
+}
+
+TEST_CASE("Trajectory files round-trip bit for bit", "[io][trajectory]") {
+  Trajectory t;
+  t.meta = {{"method", "basic_colliding"}, {"seed", "7"}};
+  t.bodies = {{"ground", Vec3(50, 0.5, 50), true}, {"box", Vec3(0.5, 0.25, 0.125), false}};
+  for (int k = 0; k < 3; ++k) {
+    TrajectoryFrame f;
+    f.t = k / 60.0;
+    f.kinetic = 0.1 * k + 1.0 / 3.0;
+    f.potential = 9.81 / 7.0;
+    f.contacts = k;
+    f.events = 2 * k;
+    f.bisections = 11 * k;
+    f.x = {Vec3(0, -0.5, 0), Vec3(0.1, 1.0 / 3.0 + k, -2e-17)};
+    f.q = {Quat::Identity(), Quat(Eigen::AngleAxisd(0.1 * k + 0.01, Vec3(1, 2, 3).normalized()))};
+    t.frames.push_back(f);
+  }
+  const std::string path = (std::filesystem::temp_directory_path() / "boxsim_io_test_traj.dat").string();
+  writeTrajectory(path, t);
+  const Trajectory r = readTrajectory(path);
+  std::remove(path.c_str());
+  CHECK(r.meta == t.meta);
+  REQUIRE(r.frames.size() == 3);
+  REQUIRE(r.bodies.size() == 2);
+  CHECK(r.bodies[1].halfExtents == t.bodies[1].halfExtents);
+  CHECK(r.bodies[0].immovable);
+  for (int k = 0; k < 3; ++k) {
+    CHECK(r.frames[k].t == t.frames[k].t);
+    CHECK(r.frames[k].kinetic == t.frames[k].kinetic);
+    CHECK(r.frames[k].bisections == t.frames[k].bisections);
+    CHECK(r.frames[k].x[1] == t.frames[k].x[1]);
+    CHECK(r.frames[k].q[1].coeffs() == t.frames[k].q[1].coeffs());
+  }
+}
+
+TEST_CASE("A malformed trajectory file is rejected with file and line", "[io][trajectory][input]") {
+  const std::string path = (std::filesystem::temp_directory_path() / "boxsim_io_test_bad.dat").string();
+  writeFileAtomically(path, "# boxsim trajectory 1\n# body 0 box half_extents 1 1 1 immovable 0\n0 1 2\n");
+  CHECK_THROWS_WITH(readTrajectory(path), Contains("boxsim_io_test_bad.dat:3:"));
+  std::remove(path.c_str());
+}
+
+TEST_CASE("Files are written whole or not at all", "[io][atomic]") {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "boxsim_io_test_atomic";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "out.txt").string();
+  writeFileAtomically(path, "first");
+  writeFileAtomically(path, "second, longer");
+  std::ifstream in(path);
+  std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  CHECK(content == "second, longer");
+  // A folder that does not exist: an error naming the path, and nothing left behind.
+  CHECK_THROWS_WITH(writeFileAtomically((dir / "missing" / "x.txt").string(), "data"),
+                    Contains("missing/x.txt"));
+  CHECK(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator{}) == 1);
+  std::filesystem::remove_all(dir);
+}
