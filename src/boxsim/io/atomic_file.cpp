@@ -1,5 +1,6 @@
 #include "boxsim/io/atomic_file.hpp"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -27,6 +28,10 @@ std::string makeTemporaryBeside(const std::string& path) {
   buffer.push_back('\0');
   const int fd = ::mkstemp(buffer.data());
   if (fd < 0) throw ioError("cannot create a temporary file for", path);
+  // mkstemp creates the file 0600; give the output the permissions of any new file instead.
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  ::fchmod(fd, 0666 & ~mask);
   ::close(fd);
   return std::string(buffer.data());
 }

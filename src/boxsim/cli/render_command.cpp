@@ -1,0 +1,50 @@
+#include <iostream>
+
+#include "boxsim/cli/commands.hpp"
+#include "boxsim/io/render.hpp"
+#include "boxsim/io/trajectory.hpp"
+
+namespace boxsim::cli {
+
+namespace {
+struct RenderArgs {
+  std::string trajectory;
+  std::string out;
+  std::vector<int> frames;
+  int width = 800;
+  int height = 600;
+};
+}  // namespace
+
+void addRenderCommand(CLI::App& app) {
+  auto args = std::make_shared<RenderArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "render", "Draw a trajectory in 3D with gnuplot: a frame (PNG, SVG), a strip of frames "
+                "(PNG with several --frame), or the whole run animated (GIF)");
+  cmd->add_option("trajectory", args->trajectory, "Trajectory file written by `boxsim run`")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--out,-o", args->out, "Image to write: FILE.png, FILE.svg or FILE.gif")
+      ->required();
+  cmd->add_option("--frame,-f", args->frames,
+                  "Frame index to draw (repeat for a strip); default: frame 0, or all for a GIF");
+  cmd->add_option("--width", args->width, "Image width, pixels")->capture_default_str()
+      ->check(CLI::Range(64, 8192));
+  cmd->add_option("--height", args->height, "Image height, pixels")->capture_default_str()
+      ->check(CLI::Range(64, 8192));
+  cmd->callback([args] {
+    try {
+      const Trajectory trajectory = readTrajectory(args->trajectory);
+      RenderOptions options;
+      options.width = args->width;
+      options.height = args->height;
+      options.frames = args->frames;
+      renderTrajectory(trajectory, args->out, options);
+    } catch (const std::exception& e) {
+      std::cerr << "boxsim render: error: " << e.what() << "\n";
+      throw CLI::RuntimeError(2);
+    }
+  });
+}
+
+}  // namespace boxsim::cli
