@@ -43,11 +43,13 @@ struct BasicCollidingParams {
 /// The basic colliding technique as a Stepper ("basic_colliding").
 class BasicCollidingStepper final : public Stepper {
  public:
+  /// A stepper with the given parameters.
   explicit BasicCollidingStepper(const BasicCollidingParams& params = {}) : params_(params) {}
   std::string name() const override { return "basic_colliding"; }
   std::map<std::string, std::string> parameters() const override;
   /// Advances by dt (s): \thesis{§2.1} steps 1-4, repeated until the whole dt is covered.
   StepStats step(World& world, double dt) override;
+  /// The parameters it runs with.
   const BasicCollidingParams& params() const { return params_; }
 
  private:

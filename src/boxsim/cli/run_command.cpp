@@ -32,16 +32,13 @@ class ProgressBar {
     if (now - start_ < std::chrono::seconds(1) || now - last_ < std::chrono::milliseconds(100))
       return;
     last_ = now;
-    drawn_ = true;
-    const int width = 40;
-    const int filled = static_cast<int>(fraction * width + 0.5);
-    std::fprintf(stderr, "\r[%s%s] %3d%% %6.1f s", std::string(filled, '#').c_str(),
-                 std::string(width - filled, '.').c_str(), static_cast<int>(fraction * 100 + 0.5),
-                 std::chrono::duration<double>(now - start_).count());
-    std::fflush(stderr);
+    draw(fraction, now);
   }
+  /// Draws the full bar once more (if it was shown at all) and ends its line.
   void finish() {
-    if (drawn_) std::fprintf(stderr, "\n");
+    if (!drawn_) return;
+    draw(1.0, Clock::now());
+    std::fprintf(stderr, "\n");
   }
 
  private:
@@ -50,6 +47,16 @@ class ProgressBar {
   bool drawn_ = false;
   Clock::time_point start_;
   Clock::time_point last_{};
+
+  void draw(double fraction, Clock::time_point now) {
+    drawn_ = true;
+    const int width = 40;
+    const int filled = static_cast<int>(fraction * width + 0.5);
+    std::fprintf(stderr, "\r[%s%s] %3d%% %6.1f s", std::string(filled, '#').c_str(),
+                 std::string(width - filled, '.').c_str(), static_cast<int>(fraction * 100 + 0.5),
+                 std::chrono::duration<double>(now - start_).count());
+    std::fflush(stderr);
+  }
 };
 
 std::string number(double x) {

@@ -28,7 +28,7 @@ struct SeparatingAxisResult {
   double depth = 0.0;
   /// Unit axis pointing from box A towards box B.
   Vec3 normal = Vec3::UnitY();
-  AxisKind kind = AxisKind::FaceA;
+  AxisKind kind = AxisKind::FaceA;  ///< which kind of axis was chosen
   int indexA = 0;  ///< face axis of A, or edge direction of A, 0..2
   int indexB = 0;  ///< face axis of B, or edge direction of B, 0..2
 };
@@ -50,7 +50,7 @@ struct ContactManifold {
   AxisKind kind = AxisKind::FaceA; ///< face contact (FaceA, FaceB) or edge-edge contact
   /// Deepest penetration of the points, m; the separating-axis depth when count == 0.
   double depth = 0.0;
-  std::array<ContactPoint, 4> points{};
+  std::array<ContactPoint, 4> points{};  ///< the first `count` are valid
   int count = 0;                   ///< number of valid points, 0..4
 
   /// The mean of the contact points, m: the single contact point of a collision (\alg{A.2 L7}).

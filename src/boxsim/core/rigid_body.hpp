@@ -15,6 +15,7 @@ struct BodyState {
   Quat q = Quat::Identity();        ///< orientation, body to world, unit quaternion
   Vec3 P = Vec3::Zero();            ///< linear momentum, kg m/s
   Vec3 L = Vec3::Zero();            ///< angular momentum about the centre of mass, kg m^2/s
+  /// Bitwise equality of all four state variables (for determinism tests).
   bool operator==(const BodyState& o) const {
     return x == o.x && q.coeffs() == o.q.coeffs() && P == o.P && L == o.L;
   }
@@ -41,10 +42,10 @@ class RigidBody {
   double mass = 1.0;                       ///< kg; +inf for an immovable body
   double invMass = 1.0;                    ///< 1/kg; 0 for an immovable body
   Vec3 IbodyInvDiag = Vec3::Constant(6.0); ///< inverse principal moments, 1/(kg m^2)
-  bool immovable = false;
+  bool immovable = false;  ///< infinite mass and inertia: never moves
 
   // --- state (Witkin-Baraff) ---
-  BodyState s;
+  BodyState s;  ///< the state x, q, P, L
 
   // --- derived by updateDerived() ---
   Vec3 v = Vec3::Zero();      ///< linear velocity P/m, m/s

@@ -20,6 +20,7 @@ struct StepStats {
   /// events-per-step bound) and did less than the technique asks for.
   bool limitReached = false;
 
+  /// Accumulates the counts of another step; `contacts` takes the later value.
   StepStats& operator+=(const StepStats& o) {
     events += o.events;
     bisections += o.bisections;

@@ -13,7 +13,8 @@ namespace boxsim {
 
 /// The state of every body at one instant, in body order. Restoring it is a roll-back.
 struct WorldState {
-  std::vector<BodyState> bodies;
+  std::vector<BodyState> bodies;  ///< one state per body, in body order
+  /// Bitwise equality of every body state.
   bool operator==(const WorldState& o) const { return bodies == o.bodies; }
 };
 

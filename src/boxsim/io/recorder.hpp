@@ -20,6 +20,7 @@ class Recorder {
   /// Appends a frame at time t (s) with the stats of the step that led to it.
   void capture(const World& world, double t, const StepStats& stats = {});
 
+  /// The frames recorded so far.
   const Trajectory& trajectory() const { return trajectory_; }
   /// Writes the recording to path, whole or not at all.
   void write(const std::string& path) const { writeTrajectory(path, trajectory_); }

@@ -20,7 +20,7 @@ class SceneError : public std::runtime_error {
 
 /// A loaded scene: the world and where each body came from.
 struct Scene {
-  World world;
+  World world;  ///< the bodies, gravity and restitution the scene describes
   std::string source;       ///< file name (or the name given to parseScene)
   std::string description;  ///< the scene's "description", if any
   /// For each body of world, the JSON path it came from ("/bodies/0", "/builders/1 (tower

@@ -22,7 +22,7 @@ struct DieSpec {
 /// `count` cubes stacked on the plane y = baseY, centred on (x, z) = (origin.x, origin.z),
 /// with a vertical gap (m) between neighbours.
 struct TowerSpec {
-  int count = 10;
+  int count = 10;  ///< number of cubes, >= 1
   double size = 1.0;   ///< m
   double mass = 1.0;   ///< kg
   Vec3 origin = Vec3::Zero();  ///< bottom centre of the tower, m
@@ -32,7 +32,7 @@ struct TowerSpec {
 /// A one-box-deep pyramid: rows of base, base-1, ..., 1 cubes in the x-y plane, resting on
 /// y = origin.y, centred on origin.x, at depth origin.z (\thesis{Fig. 6.6}).
 struct PyramidSpec {
-  int base = 10;
+  int base = 10;  ///< cubes in the bottom row, >= 1
   double size = 1.0;   ///< m
   double mass = 1.0;   ///< kg
   Vec3 origin = Vec3::Zero();  ///< bottom centre, m
@@ -43,7 +43,7 @@ struct PyramidSpec {
 /// `speed` towards the centre (\thesis{Fig. 6.7}). The grid is nx × ny × nz = count with the
 /// three as close to equal as count allows (100 = 5 × 5 × 4, 1000 = 10³).
 struct ClumpSpec {
-  int count = 100;
+  int count = 100;  ///< number of cubes, >= 1
   double size = 1.0;     ///< m
   double mass = 1.0;     ///< kg
   double spacing = 2.0;  ///< centre-to-centre distance, m, > size

@@ -29,9 +29,9 @@ namespace boxsim {
 
 /// A body as a trajectory file describes it.
 struct TrajectoryBody {
-  std::string name;
+  std::string name;  ///< unique, no white space
   Vec3 halfExtents = Vec3::Constant(0.5);  ///< m
-  bool immovable = false;
+  bool immovable = false;  ///< drawn as scenery, never moves
 };
 
 /// One recorded frame.
@@ -51,8 +51,8 @@ struct Trajectory {
   /// Run parameters, written as `# key: value` header lines (scene, method, dt, seed, ...),
   /// in key order.
   std::map<std::string, std::string> meta;
-  std::vector<TrajectoryBody> bodies;
-  std::vector<TrajectoryFrame> frames;
+  std::vector<TrajectoryBody> bodies;   ///< in body order, immovable ones included
+  std::vector<TrajectoryFrame> frames;  ///< in time order
 };
 
 /// Formats a trajectory in the file format above (full double precision, round-trippable).
