@@ -1,5 +1,6 @@
 // End-to-end checks of the `boxsim` command: a good run writes a trajectory, every bad input
 // exits non-zero with an error naming the file and the place, and leaves no output file.
+#include <stdlib.h>
 #include <sys/wait.h>
 
 #include <catch2/catch.hpp>
@@ -20,9 +21,22 @@ struct Result {
   std::string stderrText;
 };
 
-const fs::path kDir = fs::temp_directory_path() / "boxsim_cli_test";
+/// A fresh folder of the test's own (CTest runs the cases in parallel), removed at the end.
+class ScratchDir {
+ public:
+  ScratchDir() {
+    std::string pattern = (fs::temp_directory_path() / "boxsim_cli_test_XXXXXX").string();
+    if (::mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
+    path_ = pattern;
+  }
+  ~ScratchDir() { fs::remove_all(path_); }
+  fs::path operator/(const std::string& name) const { return path_ / name; }
 
-Result runBoxsim(const std::string& arguments) {
+ private:
+  fs::path path_;
+};
+
+Result runBoxsim(const ScratchDir& kDir, const std::string& arguments) {
   const fs::path errPath = kDir / "stderr.txt";
   const std::string command = std::string(BOXSIM_BINARY_DIR) + "/boxsim " + arguments + " 2> " +
                               errPath.string() + " > /dev/null";
@@ -33,23 +47,18 @@ Result runBoxsim(const std::string& arguments) {
   return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, text.str()};
 }
 
-std::string writeScene(const std::string& name, const std::string& text) {
+std::string writeScene(const ScratchDir& kDir, const std::string& name, const std::string& text) {
   const fs::path p = kDir / name;
   std::ofstream(p) << text;
   return p.string();
 }
 
-void freshDir() {
-  fs::remove_all(kDir);
-  fs::create_directories(kDir);
-}
-
 }  // namespace
 
 TEST_CASE("boxsim run writes the trajectory of the die scene", "[cli]") {
-  freshDir();
+  const ScratchDir kDir;
   const std::string out = (kDir / "die.dat").string();
-  const Result r = runBoxsim("run " + std::string(BOXSIM_SOURCE_DIR) +
+  const Result r = runBoxsim(kDir, "run " + std::string(BOXSIM_SOURCE_DIR) +
                              "/chapters/basic_colliding/scenes/die.json --method basic_colliding "
                              "--dt 0.0166666 --duration 1 --out " + out);
   CHECK(r.status == 0);
@@ -61,7 +70,7 @@ TEST_CASE("boxsim run writes the trajectory of the die scene", "[cli]") {
 }
 
 TEST_CASE("Every bad scene exits non-zero with its error and writes nothing", "[cli][input]") {
-  freshDir();
+  const ScratchDir kDir;
   const std::string body = R"({"half_extents": [0.5,0.5,0.5], "mass": 1, "position": [0,3,0]})";
   struct Case {
     const char* file;
@@ -81,9 +90,9 @@ TEST_CASE("Every bad scene exits non-zero with its error and writes nothing", "[
       {"overlap.json", "{\"bodies\": [" + body + "," + body + "]}", "overlap"},
   };
   for (const Case& c : cases) {
-    const std::string scene = writeScene(c.file, c.text);
+    const std::string scene = writeScene(kDir, c.file, c.text);
     const std::string out = (kDir / (std::string(c.file) + ".dat")).string();
-    const Result r = runBoxsim("run " + scene + " --duration 0.1 --out " + out);
+    const Result r = runBoxsim(kDir, "run " + scene + " --duration 0.1 --out " + out);
     INFO(c.file << ": " << r.stderrText);
     CHECK(r.status != 0);
     CHECK_THAT(r.stderrText, Contains(c.expected));
@@ -93,18 +102,25 @@ TEST_CASE("Every bad scene exits non-zero with its error and writes nothing", "[
 }
 
 TEST_CASE("An unknown method or a bad time step exits non-zero and writes nothing", "[cli][input]") {
-  freshDir();
+  const ScratchDir kDir;
   const std::string scene = std::string(BOXSIM_SOURCE_DIR) + "/chapters/basic_colliding/scenes/die.json";
   const std::string out = (kDir / "x.dat").string();
-  const Result method = runBoxsim("run " + scene + " --method teleport --out " + out);
+  const Result method = runBoxsim(kDir, "run " + scene + " --method teleport --out " + out);
   CHECK(method.status != 0);
   CHECK_THAT(method.stderrText, Contains("unknown method 'teleport'"));
   CHECK_THAT(method.stderrText, Contains("basic_colliding"));
-  const Result dt = runBoxsim("run " + scene + " --dt -1 --out " + out);
+  const Result dt = runBoxsim(kDir, "run " + scene + " --dt -1 --out " + out);
   CHECK(dt.status != 0);
   CHECK_THAT(dt.stderrText, Contains("--dt"));
   CHECK_FALSE(fs::exists(out));
-  const Result missing = runBoxsim("run " + (kDir / "nope.json").string() + " --out " + out);
+  const Result nanStep = runBoxsim(kDir, "run " + scene + " --dt nan --out " + out);
+  CHECK(nanStep.status != 0);
+  CHECK_THAT(nanStep.stderrText, Contains("time step"));
+  const Result huge = runBoxsim(kDir, "run " + scene + " --duration 1e300 --out " + out);
+  CHECK(huge.status != 0);
+  CHECK_THAT(huge.stderrText, Contains("steps"));
+  CHECK_FALSE(fs::exists(out));
+  const Result missing = runBoxsim(kDir, "run " + (kDir / "nope.json").string() + " --out " + out);
   CHECK(missing.status != 0);
   CHECK_THAT(missing.stderrText, Contains("nope.json"));
 }

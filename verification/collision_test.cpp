@@ -22,7 +22,6 @@ using namespace boxsim;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kRound = 1e-12;  // closed-form tolerance for unit boxes (see file comment)
 
 Mat3 rotation(double angle, const Vec3& axis) {
@@ -503,7 +502,7 @@ TEST_CASE("Candidate pairs come in increasing order and skip two immovable bodie
     body.s.x = x;
     return world.add(body, name);
   };
-  boxAt(Vec3(0, 0.5, 0), "on ground");     // 2
+  boxAt(Vec3(0, 0.5, 0), "on_ground");     // 2
   boxAt(Vec3(0, 1.6, 0), "above, 0.1 gap");  // 3
   boxAt(Vec3(4.95, 0.5, 0), "at the wall");  // 4
   boxAt(Vec3(20, 20, 20), "far away");     // 5
@@ -543,13 +542,13 @@ TEST_CASE("findContacts reports each penetrating pair once with normals from a t
   CHECK(contacts[1].depth == Approx(0.005).margin(kRound));
   CHECK(contacts[1].count == 4);
 
-  CHECK(anyIntersection(world));
-  CHECK_FALSE(anyIntersection(world, 0.02));
+  CHECK(firstIntersectingPair(world, 0.0) == std::make_pair(0, 2));
+  CHECK(firstIntersectingPair(world, 0.02) == std::make_pair(-1, -1));
   // With a 0.25 m margin the hovering box joins, with a negative (gap) depth.
   const std::vector<ContactManifold> near = findContacts(world, 0.25);
   REQUIRE(near.size() == 3);
   CHECK(near[1].a == 0);
   CHECK(near[1].b == 3);
   CHECK(near[1].depth == Approx(-0.2).margin(kRound));
-  CHECK(anyIntersection(world, -0.25));
+  CHECK(firstIntersectingPair(world, -0.25) == std::make_pair(0, 2));
 }

@@ -56,16 +56,7 @@ RunResult runDie(const std::string& scenePath, double dt, double duration, Integ
   RunResult run;
   run.stats.emplace_back();
   KeepStats keep(stepper, run.stats);
-  std::ostringstream dtText;
-  dtText.precision(17);
-  dtText << dt;
-  std::map<std::string, std::string> meta = stepper.parameters();
-  meta.insert({{"scene", scenePath},
-               {"method", stepper.name()},
-               {"dt", dtText.str()},
-               {"restitution", std::to_string(scene.world.restitution)},
-               {"seed", "0"}});
-  Recorder recorder(scene.world, meta);
+  Recorder recorder(scene.world, runParameters(stepper, scene.world, scenePath, dt, duration));
   SimulateOptions options;
   options.dt = dt;
   options.duration = duration;

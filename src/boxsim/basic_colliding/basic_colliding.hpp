@@ -3,11 +3,14 @@
 /// forward; when a pair intersects, bisect in time for the first contact, roll every body back
 /// to it, apply the Newtonian impulse, and go on with the rest of the step.
 ///
-/// It handles collisions only, never resting contact: as a box comes to rest its bounces
-/// shrink geometrically (height ratio e² per bounce) and so do the intervals between them, so
-/// the number of collisions per second grows without bound (the chattering of \thesis{§4.3}).
+/// It handles collisions only, never resting contact: as a box settles its bounces shrink
+/// geometrically (height ratio e² per bounce) and so do the intervals between them, so the
+/// collisions crowd together without bound (the chattering of \thesis{§4.3}); a body resting
+/// on another collides again the instant gravity pulls it in, and time cannot advance at all.
 /// BasicCollidingParams::maxEventsPerStep bounds the work of one step instead of hanging.
 #pragma once
+
+#include <vector>
 
 #include "boxsim/basic_colliding/time_of_impact.hpp"
 #include "boxsim/core/integrator.hpp"
@@ -25,7 +28,7 @@ struct BasicCollidingParams {
   /// under forward Euler a dropped box never comes to rest but keeps bouncing that high
   /// (figure s2_1_die_height_energy shows both). ForwardEuler stays selectable.
   Integrator integrator = Integrator::SemiImplicitEuler;
-  /// Bisection tolerances (\thesis{§3.3.1}: "within some small epsilon").
+  /// Bisection tolerances (\thesis{§3.3.1}).
   TimeOfImpactParams timeOfImpact;
   /// Collision events (time-of-impact searches, each followed by the impulses of that instant)
   /// one step may resolve. When a step needs more (a box chattering to rest, \thesis{§4.3}),
@@ -43,8 +46,9 @@ struct BasicCollidingParams {
 /// The basic colliding technique as a Stepper ("basic_colliding").
 class BasicCollidingStepper final : public Stepper {
  public:
-  /// A stepper with the given parameters.
-  explicit BasicCollidingStepper(const BasicCollidingParams& params = {}) : params_(params) {}
+  /// A stepper with the given parameters. Throws std::invalid_argument when timeTolerance is
+  /// not > 0, depthTolerance is negative, or maxEventsPerStep or maxImpulsePasses is < 1.
+  explicit BasicCollidingStepper(const BasicCollidingParams& params = {});
   std::string name() const override { return "basic_colliding"; }
   std::map<std::string, std::string> parameters() const override;
   /// Advances by dt (s): \thesis{§2.1} steps 1-4, repeated until the whole dt is covered.
@@ -53,9 +57,17 @@ class BasicCollidingStepper final : public Stepper {
   const BasicCollidingParams& params() const { return params_; }
 
  private:
-  /// Applies Newtonian impulses (restitution world.restitution) to every pair that intersects
-  /// in `atImpact` and approaches in `world`; returns the number of impulses applied.
-  int resolveCollisions(World& world, const World& atImpact) const;
+  /// The pairs that intersect in `atImpact` (the first overlapping state of a search), with the
+  /// one contact point of each (the manifold centroid, \alg{A.2 L7}) and its normal.
+  struct Collision {
+    int a, b;      ///< body indices
+    Vec3 point;    ///< m
+    Vec3 normal;   ///< unit, from a to b
+  };
+  std::vector<Collision> collisionsAt(const World& atImpact) const;
+  /// Applies Newtonian impulses (restitution world.restitution) to each collision whose bodies
+  /// approach in `world`, in passes until none does; returns the number of impulses applied.
+  int resolveCollisions(World& world, const std::vector<Collision>& collisions) const;
 
   BasicCollidingParams params_;
 };

@@ -59,27 +59,15 @@ class ProgressBar {
   }
 };
 
-std::string number(double x) {
-  std::ostringstream os;
-  os.precision(17);
-  os << x;
-  return os.str();
-}
-
 int run(const RunArgs& args) {
   TechniqueOptions options;
   if (!args.integrator.empty()) options.integrator = parseIntegrator(args.integrator);
   // Build the stepper before loading the scene so an unknown method fails fast.
   std::unique_ptr<Stepper> stepper = makeStepper(args.method, options);
+  checkedStepCount(args.dt, args.duration, 1);
   Scene scene = loadScene(args.scene);
-  std::map<std::string, std::string> meta = stepper->parameters();
-  meta.insert({{"scene", args.scene},
-               {"method", stepper->name()},
-               {"dt", number(args.dt)},
-               {"duration", number(args.duration)},
-               {"restitution", number(scene.world.restitution)},
-               {"seed", "0"}});
-  Recorder recorder(scene.world, meta);
+  Recorder recorder(scene.world,
+                    runParameters(*stepper, scene.world, args.scene, args.dt, args.duration));
   ProgressBar bar(!args.quiet);
   SimulateOptions simulateOptions;
   simulateOptions.dt = args.dt;

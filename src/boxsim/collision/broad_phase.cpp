@@ -53,14 +53,15 @@ std::vector<ContactManifold> findContacts(const World& world, double margin) {
   return contacts;
 }
 
-bool anyIntersection(const World& world, double tolerance) {
+bool pairIntersects(const World& world, int i, int j, double tolerance) {
+  return separatingAxisTest(Obb::of(world.bodies[i]), Obb::of(world.bodies[j])).depth > tolerance;
+}
+
+std::pair<int, int> firstIntersectingPair(const World& world, double tolerance) {
   // A negative tolerance asks about boxes closer than -tolerance, so widen the reject to match.
-  for (const auto& [i, j] : candidatePairs(world, std::max(0.0, -tolerance))) {
-    const SeparatingAxisResult sat =
-        separatingAxisTest(Obb::of(world.bodies[i]), Obb::of(world.bodies[j]));
-    if (sat.depth > tolerance) return true;
-  }
-  return false;
+  for (const std::pair<int, int>& p : candidatePairs(world, std::max(0.0, -tolerance)))
+    if (pairIntersects(world, p.first, p.second, tolerance)) return p;
+  return {-1, -1};
 }
 
 }  // namespace boxsim

@@ -27,10 +27,12 @@ std::vector<std::pair<int, int>> candidatePairs(const World& world, double margi
 /// margin). \thesis{§3.2}
 std::vector<ContactManifold> findContacts(const World& world, double margin = 0.0);
 
-/// True when any pair of bodies (not both immovable) has a separating-axis depth above
-/// `tolerance` (m). With tolerance 0 this is "some pair intersects" in the sense of
-/// SeparatingAxisResult::intersecting; a negative tolerance also reports pairs closer than
+/// True when bodies i and j overlap with a separating-axis depth above `tolerance` (m).
+bool pairIntersects(const World& world, int i, int j, double tolerance);
+
+/// The first pair (in candidatePairs order) whose separating-axis depth exceeds `tolerance`
+/// (m), or (-1, -1) when none does. A negative tolerance also reports pairs closer than
 /// -tolerance.
-bool anyIntersection(const World& world, double tolerance = 0.0);
+std::pair<int, int> firstIntersectingPair(const World& world, double tolerance);
 
 }  // namespace boxsim

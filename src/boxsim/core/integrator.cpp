@@ -43,16 +43,15 @@ void integrateBody(RigidBody& body, double dt, const Vec3& gravity, Integrator i
     case Integrator::SemiImplicitEuler:
       s.P += dt * force;
       s.x += dt * (body.invMass * s.P);
-      // L is constant without torque, so ω(t+Δt) differs from ω(t) only through R; using
-      // ω(t) keeps the rotation explicit and the scheme first order, like the translation.
       rotate(s, body.omega, dt);
       break;
   }
   body.updateDerived();
 }
 
-void integrateWorld(World& world, double dt, Integrator integrator) {
-  for (RigidBody& b : world.bodies) integrateBody(b, dt, world.gravity, integrator);
+void integrateWorld(World& world, double dt, Integrator integrator, const std::vector<char>& held) {
+  for (std::size_t i = 0; i < world.bodies.size(); ++i)
+    if (held.empty() || !held[i]) integrateBody(world.bodies[i], dt, world.gravity, integrator);
 }
 
 }  // namespace boxsim

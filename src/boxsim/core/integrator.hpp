@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "boxsim/core/world.hpp"
 
@@ -12,10 +13,11 @@ namespace boxsim {
 
 /// Which explicit one-step scheme advances a body.
 enum class Integrator {
-  /// x += Δt v(t), q += Δt ½ ω(t) q, P += Δt m g (\thesis{§6.2}: "the most basic forward
-  /// Euler scheme used in our implementation"). First order.
+  /// x += Δt v(t), q += Δt ½ ω(t) q, P += Δt m g: the scheme the thesis integrated with
+  /// (\thesis{§6.2}). First order.
   ForwardEuler,
-  /// P += Δt m g first, then x += Δt v(t+Δt) and q with ω(t+Δt). First order, symplectic.
+  /// P += Δt m g first, then x += Δt v(t+Δt); q advances with ω(t) as in ForwardEuler (with no
+  /// torque L is constant, so the two differ only through R). First order, symplectic.
   SemiImplicitEuler,
 };
 
@@ -29,7 +31,9 @@ Integrator parseIntegrator(const std::string& name);
 /// the quaternion is renormalised after the step. Immovable bodies do not move.
 void integrateBody(RigidBody& body, double dt, const Vec3& gravity, Integrator integrator);
 
-/// Advances every body of the world by dt (s).
-void integrateWorld(World& world, double dt, Integrator integrator);
+/// Advances every body of the world by dt (s) except those whose entry in `held` is non-zero
+/// (`held` is empty, holding none, or has one entry per body).
+void integrateWorld(World& world, double dt, Integrator integrator,
+                    const std::vector<char>& held = {});
 
 }  // namespace boxsim

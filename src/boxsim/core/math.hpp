@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <string>
 
 namespace boxsim {
 
@@ -15,11 +16,16 @@ using Quat = Eigen::Quaterniond;  ///< A unit quaternion for orientation (w, x, 
 /// Standard gravity (0, -9.81, 0) m/s^2, along -y as the thesis assumes (\thesis{§5.4}).
 inline Vec3 standardGravity() { return Vec3(0.0, -9.81, 0.0); }
 
-/// The skew-symmetric cross-product matrix: `skew(a) * b == a.cross(b)`.
-inline Mat3 skew(const Vec3& a) {
-  Mat3 s;
-  s << 0.0, -a.z(), a.y(), a.z(), 0.0, -a.x(), -a.y(), a.x(), 0.0;
-  return s;
+/// π, for conversions between degrees (scene files) and radians.
+inline constexpr double kPi = 3.14159265358979323846;
+
+/// The rotation by `angleDeg` degrees about `axis` (any non-zero length; normalised here).
+inline Quat axisAngleDegrees(const Vec3& axis, double angleDeg) {
+  return Quat(Eigen::AngleAxisd(angleDeg * kPi / 180.0, axis.normalized()));
 }
+
+/// The shortest decimal text that reads back to exactly `value` (round trip), for output
+/// headers and data files: 1e-05, 0.9, 0.016666666666666666.
+std::string shortestText(double value);
 
 }  // namespace boxsim

@@ -1,15 +1,16 @@
+/// \file
+/// Whole-or-nothing output files.
 #include "boxsim/io/atomic_file.hpp"
 
-#include <sys/stat.h>
+#include <fcntl.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
-#include <vector>
 
 namespace boxsim {
 
@@ -19,21 +20,35 @@ std::runtime_error ioError(const std::string& what, const std::string& path) {
 }
 }  // namespace
 
+TemporaryFile::~TemporaryFile() {
+  if (!path_.empty()) std::remove(path_.c_str());
+}
+
+std::string makeTemporaryIn(const std::string& directory, const std::string& stem) {
+  static std::atomic<unsigned> counter{0};
+  const std::filesystem::path dir(directory.empty() ? std::string(".") : directory);
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    const std::string candidate =
+        (dir / (stem + std::to_string(::getpid()) + "-" + std::to_string(counter++))).string();
+    // O_EXCL makes the name ours alone; mode 0666 lets the umask decide the permissions, as for
+    // any other new file.
+    const int fd = ::open(candidate.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd >= 0) {
+      ::close(fd);
+      return candidate;
+    }
+    if (errno != EEXIST) break;
+  }
+  throw ioError("cannot create a temporary file in", dir.string());
+}
+
 std::string makeTemporaryBeside(const std::string& path) {
   const std::filesystem::path target(path);
-  std::filesystem::path dir = target.parent_path();
-  if (dir.empty()) dir = ".";
-  std::string pattern = (dir / ("." + target.filename().string() + ".tmpXXXXXX")).string();
-  std::vector<char> buffer(pattern.begin(), pattern.end());
-  buffer.push_back('\0');
-  const int fd = ::mkstemp(buffer.data());
-  if (fd < 0) throw ioError("cannot create a temporary file for", path);
-  // mkstemp creates the file 0600; give the output the permissions of any new file instead.
-  const mode_t mask = ::umask(0);
-  ::umask(mask);
-  ::fchmod(fd, 0666 & ~mask);
-  ::close(fd);
-  return std::string(buffer.data());
+  try {
+    return makeTemporaryIn(target.parent_path().string(), "." + target.filename().string() + ".tmp");
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error("cannot write '" + path + "': " + e.what());
+  }
 }
 
 void commitTemporary(const std::string& temporaryPath, const std::string& path) {
@@ -45,18 +60,15 @@ void commitTemporary(const std::string& temporaryPath, const std::string& path) 
 }
 
 void writeFileAtomically(const std::string& path, const std::string& content) {
-  const std::string temporary = makeTemporaryBeside(path);
-  std::FILE* file = std::fopen(temporary.c_str(), "wb");
+  TemporaryFile temporary(makeTemporaryBeside(path));
+  std::FILE* file = std::fopen(temporary.path().c_str(), "wb");
   bool ok = file != nullptr;
   if (ok) ok = std::fwrite(content.data(), 1, content.size(), file) == content.size();
   if (file != nullptr) ok = (std::fflush(file) == 0) && ok && (::fsync(fileno(file)) == 0);
   if (file != nullptr) ok = (std::fclose(file) == 0) && ok;
-  if (!ok) {
-    const std::runtime_error error = ioError("cannot write", path);
-    std::remove(temporary.c_str());
-    throw error;
-  }
-  commitTemporary(temporary, path);
+  if (!ok) throw ioError("cannot write", path);
+  commitTemporary(temporary.path(), path);
+  temporary.release();
 }
 
 }  // namespace boxsim

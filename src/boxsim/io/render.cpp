@@ -30,7 +30,6 @@ namespace boxsim {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // gnuplot's `set view rot_x, rot_z`: the camera sits 28° above the horizon (rot_x = 90° - 28°)
 // and looks from the front right, so a box at rest shows its top, its +x and its +z faces.
@@ -594,6 +593,8 @@ struct FramePlan {
 FramePlan planFrames(const Trajectory& trajectory, ImageType type, const RenderOptions& options) {
   if (trajectory.frames.empty())
     throw std::invalid_argument("render: the trajectory has no frames");
+  if (trajectory.bodies.empty())
+    throw std::invalid_argument("render: the trajectory has no bodies to draw");
   checkFrames(trajectory, options.frames);
   FramePlan plan;
   if (type != ImageType::gif) {
@@ -777,34 +778,6 @@ std::string scriptFor(const Trajectory& trajectory, ImageType type, const std::s
 }
 
 // A file that is removed when this goes out of scope, unless released.
-class TemporaryFile {
- public:
-  explicit TemporaryFile(std::string path) : path_(std::move(path)) {}
-  TemporaryFile(const TemporaryFile&) = delete;
-  TemporaryFile& operator=(const TemporaryFile&) = delete;
-  ~TemporaryFile() {
-    if (!path_.empty()) std::remove(path_.c_str());
-  }
-  const std::string& path() const { return path_; }
-  void release() { path_.clear(); }
-
- private:
-  std::string path_;
-};
-
-std::string makeTemporaryIn(const std::filesystem::path& directory, const std::string& stem) {
-  std::string pattern = (directory / (stem + "XXXXXX")).string();
-  std::vector<char> buffer(pattern.begin(), pattern.end());
-  buffer.push_back('\0');
-  const int fd = ::mkstemp(buffer.data());
-  if (fd < 0) {
-    throw std::runtime_error("render: cannot create a temporary file in '" + directory.string() +
-                             "'");
-  }
-  ::close(fd);
-  return std::string(buffer.data());
-}
-
 std::string readWholeFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
@@ -820,11 +793,11 @@ std::string renderScript(const Trajectory& trajectory, const std::string& output
 void renderTrajectory(const Trajectory& trajectory, const std::string& outputPath,
                       const RenderOptions& options) {
   const ImageType type = imageTypeOf(outputPath);
-  // Build the script before any file exists, so bad options leave nothing behind.
+  // imageTypeOf() has checked the extension before any file exists.
   TemporaryFile image(makeTemporaryBeside(outputPath));
   const std::string script = scriptFor(trajectory, type, image.path(), options);
 
-  const std::filesystem::path scratch = std::filesystem::temp_directory_path();
+  const std::string scratch = std::filesystem::temp_directory_path().string();
   const TemporaryFile scriptFile(makeTemporaryIn(scratch, "boxsim-render-"));
   const TemporaryFile errorFile(makeTemporaryIn(scratch, "boxsim-render-stderr-"));
   {
@@ -851,12 +824,6 @@ void renderTrajectory(const Trajectory& trajectory, const std::string& outputPat
     throw std::runtime_error("render: gnuplot ('" + gnuplot + "') failed to draw '" + outputPath +
                              "': " + message);
   }
-  // mkstemp made the file private; an image is as readable as any other output.
-  std::filesystem::permissions(
-      image.path(),
-      std::filesystem::perms::owner_read | std::filesystem::perms::owner_write |
-          std::filesystem::perms::group_read | std::filesystem::perms::others_read,
-      sizeError);
   commitTemporary(image.path(), outputPath);
   image.release();
 }

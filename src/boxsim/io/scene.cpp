@@ -8,6 +8,8 @@
 #include <set>
 #include <sstream>
 
+#include "boxsim/basic_colliding/time_of_impact.hpp"
+#include "boxsim/collision/broad_phase.hpp"
 #include "boxsim/collision/separating_axis.hpp"
 #include "boxsim/io/scene_builders.hpp"
 
@@ -16,9 +18,8 @@ namespace boxsim {
 namespace {
 
 using Json = nlohmann::json;
-constexpr double kPi = 3.14159265358979323846;
-/// Boxes may touch at the start (a stacked tower) but not overlap deeper than this, m.
-constexpr double kStartOverlapTolerance = 1e-9;
+/// Most bodies a scene may hold: the all-pairs broad phase makes larger scenes impractical.
+constexpr int kMaxBodies = 20000;
 
 /// One JSON value with its path, for reading values with errors that say where they were.
 class Node {
@@ -158,7 +159,7 @@ Quat readOrientation(const Node& node) {
               "add the missing key");
   const Vec3 axis = node.at("axis").nonZeroVec3("the rotation axis");
   const double angle = node.at("angle_deg").number();
-  return Quat(Eigen::AngleAxisd(angle * kPi / 180.0, axis.normalized()));
+  return axisAngleDegrees(axis, angle);
 }
 
 void readBody(const Node& node, Scene& scene, std::set<std::string>& names) {
@@ -188,7 +189,8 @@ void readBody(const Node& node, Scene& scene, std::set<std::string>& names) {
   std::string name = "body_" + std::to_string(scene.world.bodies.size());
   if (node.has("name")) name = node.at("name").name();
   if (!names.insert(name).second)
-    node.at("name").fail("the name \"" + name + "\" is used twice", "give each body its own name");
+    (node.has("name") ? node.at("name") : node)
+        .fail("the name \"" + name + "\" is already taken", "give each body its own \"name\"");
   scene.world.add(body, name);
   scene.origins.push_back(node.path());
 }
@@ -199,6 +201,12 @@ void readBuilder(const Node& node, Scene& scene, std::set<std::string>& names) {
     node.fail("missing \"type\"", "add \"type\": one of die, tower, pyramid, clump");
   const std::string type = node.at("type").string();
   const int before = static_cast<int>(scene.world.bodies.size());
+  const auto requireRoom = [&](const char* key, double adding) {
+    if (before + adding > kMaxBodies)
+      node.at(key).fail("the scene would hold " + std::to_string(static_cast<long long>(before + adding)) +
+                            " bodies, more than the limit of " + std::to_string(kMaxBodies),
+                        "build fewer boxes");
+  };
   const auto size = [&](double fallback) { return node.has("size") ? node.at("size").positive("m") : fallback; };
   const auto mass = [&](double fallback) { return node.has("mass") ? node.at("mass").positive("kg") : fallback; };
   if (type == "die") {
@@ -216,6 +224,7 @@ void readBuilder(const Node& node, Scene& scene, std::set<std::string>& names) {
     node.allowKeys({"type", "count", "size", "mass", "origin", "gap"});
     TowerSpec spec;
     if (node.has("count")) spec.count = node.at("count").count();
+    if (node.has("count")) requireRoom("count", spec.count);
     spec.size = size(spec.size);
     spec.mass = mass(spec.mass);
     if (node.has("origin")) spec.origin = node.at("origin").vec3();
@@ -225,6 +234,7 @@ void readBuilder(const Node& node, Scene& scene, std::set<std::string>& names) {
     node.allowKeys({"type", "base", "size", "mass", "origin", "gap"});
     PyramidSpec spec;
     if (node.has("base")) spec.base = node.at("base").count();
+    if (node.has("base")) requireRoom("base", 0.5 * spec.base * (spec.base + 1.0));
     spec.size = size(spec.size);
     spec.mass = mass(spec.mass);
     if (node.has("origin")) spec.origin = node.at("origin").vec3();
@@ -234,6 +244,7 @@ void readBuilder(const Node& node, Scene& scene, std::set<std::string>& names) {
     node.allowKeys({"type", "count", "size", "mass", "spacing", "center", "speed"});
     ClumpSpec spec;
     if (node.has("count")) spec.count = node.at("count").count();
+    if (node.has("count")) requireRoom("count", spec.count);
     spec.size = size(spec.size);
     spec.mass = mass(spec.mass);
     if (node.has("spacing")) spec.spacing = node.at("spacing").positive("m");
@@ -260,21 +271,20 @@ void readBuilder(const Node& node, Scene& scene, std::set<std::string>& names) {
 }
 
 void checkNoOverlap(const Scene& scene) {
+  // Boxes may touch at the start (a stacked tower overlaps by rounding) but not overlap by
+  // more than the techniques' own intersection threshold.
+  const double tolerance = TimeOfImpactParams{}.depthTolerance;
   const World& w = scene.world;
-  for (std::size_t i = 0; i < w.bodies.size(); ++i)
-    for (std::size_t j = i + 1; j < w.bodies.size(); ++j) {
-      if (w.bodies[i].immovable && w.bodies[j].immovable) continue;
-      const SeparatingAxisResult sat =
-          separatingAxisTest(Obb::of(w.bodies[i]), Obb::of(w.bodies[j]));
-      if (sat.intersecting && sat.depth > kStartOverlapTolerance) {
-        std::ostringstream os;
-        os << scene.source << ": " << scene.origins[i] << " and " << scene.origins[j]
-           << ": the boxes \"" << w.names[i] << "\" and \"" << w.names[j]
-           << "\" overlap by " << sat.depth
-           << " m at the start. Fix: move them apart (touching is allowed)";
-        throw SceneError(os.str());
-      }
+  for (const auto& [i, j] : candidatePairs(w)) {
+    const SeparatingAxisResult sat = separatingAxisTest(Obb::of(w.bodies[i]), Obb::of(w.bodies[j]));
+    if (sat.depth > tolerance) {
+      std::ostringstream os;
+      os << scene.source << ": " << scene.origins[i] << " and " << scene.origins[j]
+         << ": the boxes \"" << w.names[i] << "\" and \"" << w.names[j] << "\" overlap by "
+         << sat.depth << " m at the start. Fix: move them apart (touching is allowed)";
+      throw SceneError(os.str());
     }
+  }
 }
 
 /// Line and column (1-based) of a byte offset in text.
@@ -342,6 +352,7 @@ Scene parseScene(const std::string& text, const std::string& source) {
     if (scene.world.restitution < 0.0 || scene.world.restitution > 1.0)
       e.fail("restitution must lie in [0, 1]", "use 0.9 as the thesis (§3.3.2)");
   }
+  std::set<std::string> names;
   if (top.has("ground")) {
     const Node g = top.at("ground");
     g.requireObject("the ground {\"height\": 0, \"half_size\": 50, \"half_thickness\": 0.5}");
@@ -349,16 +360,21 @@ Scene parseScene(const std::string& text, const std::string& source) {
     const double height = g.has("height") ? g.at("height").number() : 0.0;
     const double halfSize = g.has("half_size") ? g.at("half_size").positive("m") : 50.0;
     const double halfThickness = g.has("half_thickness") ? g.at("half_thickness").positive("m") : 0.5;
-    scene.world.addGround(height, halfSize, halfThickness);
+    const int ground = scene.world.addGround(height, halfSize, halfThickness);
     scene.origins.push_back("/ground");
+    names.insert(scene.world.names[ground]);
   }
-  std::set<std::string> names;
   if (top.has("bodies")) {
     const Node list = top.at("bodies");
     const Json& array = root.at("bodies");
     if (!array.is_array()) list.fail("expected an array of bodies", "write \"bodies\": [ {...}, ... ]");
     for (std::size_t i = 0; i < array.size(); ++i)
-      readBody(Node(array[i], "/bodies/" + std::to_string(i), scene.source), scene, names);
+    {
+      const Node body(array[i], "/bodies/" + std::to_string(i), scene.source);
+      if (static_cast<int>(scene.world.bodies.size()) >= kMaxBodies)
+        body.fail("more than " + std::to_string(kMaxBodies) + " bodies", "use fewer bodies");
+      readBody(body, scene, names);
+    }
   }
   if (top.has("builders")) {
     const Node list = top.at("builders");

@@ -7,8 +7,6 @@
 namespace boxsim {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
-
 RigidBody cube(double size, double mass) {
   return RigidBody::box(Vec3::Constant(0.5 * size), mass);
 }
@@ -23,7 +21,7 @@ int addDie(World& world, const DieSpec& spec) {
   RigidBody b = cube(spec.size, spec.mass);
   b.s.x = spec.position;
   if (spec.tiltAxis.norm() == 0.0) throw std::invalid_argument("die tilt axis must be non-zero");
-  b.s.q = Quat(Eigen::AngleAxisd(spec.tiltDeg * kPi / 180.0, spec.tiltAxis.normalized()));
+  b.s.q = axisAngleDegrees(spec.tiltAxis, spec.tiltDeg);
   b.updateDerived();
   b.setVelocity(spec.velocity);
   b.setAngularVelocity(spec.angularVelocity);

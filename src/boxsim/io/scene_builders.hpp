@@ -1,6 +1,7 @@
 /// \file
-/// Named builders for the thesis' scenes: the die (\thesis{§4.2}), a tower, the one-box-deep
-/// pyramid of Fig. 6.6 and the clump of Fig. 6.7 (\thesis{§6.1}). Each adds bodies to a world
+/// Named builders for the thesis' scenes: the die (\thesis{§4.2}), a tower, the pyramid of
+/// Fig. 6.6 (one box deep: our reading of the figure) and the clump of Fig. 6.7 (\thesis{§6.1});
+/// sizes, masses and speeds are ours where the thesis gives none. Each adds bodies to a world
 /// and returns how many it added; all bodies are cubes of one size and mass (\thesis{§3.1}).
 #pragma once
 

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <functional>
+#include <map>
+#include <string>
 
 #include "boxsim/core/stepper.hpp"
 #include "boxsim/io/recorder.hpp"
@@ -26,9 +28,27 @@ struct SimulateSummary {
   long bisections = 0;     ///< bisection steps in all
 };
 
+/// Most steps one run may take. Larger runs are refused before they start rather than failing
+/// hours in.
+inline constexpr double kMaxSteps = 1e7;
+/// Most body poses (steps × bodies) one run may record: about 1 GB of frames.
+inline constexpr double kMaxRecordedPoses = 2e7;
+
+/// The header parameters of a run: the stepper's own parameters, then method, scene, dt,
+/// duration, restitution and seed, every number in shortest round-trip text.
+std::map<std::string, std::string> runParameters(const Stepper& stepper, const World& world,
+                                                 const std::string& scene, double dt,
+                                                 double duration);
+
+/// Checks dt and duration before a run: finite, dt > 0, duration >= 0, and the step count and
+/// recorded poses within kMaxSteps and kMaxRecordedPoses. Throws std::invalid_argument naming
+/// the problem and the fix.
+long checkedStepCount(double dt, double duration, std::size_t bodyCount);
+
 /// Records the initial frame, then steps `stepper` round(duration / dt) times, recording a
 /// frame after each (frame k at t = k dt, computed from k so that time does not drift).
-/// Throws std::invalid_argument when dt or duration is not finite or out of range.
+/// Throws std::invalid_argument as checkedStepCount() does, and std::runtime_error naming the
+/// step and the body when a body's state stops being finite.
 SimulateSummary simulate(World& world, Stepper& stepper, const SimulateOptions& options,
                          Recorder& recorder);
 

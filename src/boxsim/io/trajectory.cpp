@@ -1,6 +1,7 @@
 #include "boxsim/io/trajectory.hpp"
 
-#include <charconv>
+#include <algorithm>
+#include <cctype>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -14,12 +15,7 @@ namespace {
 constexpr int kFrameColumns = 7;  // t kinetic potential total contacts events bisections
 constexpr int kBodyColumns = 7;   // x y z qw qx qy qz
 
-// Shortest text that reads back to the same double (round trip, deterministic output).
-void appendNumber(std::string& out, double value) {
-  char buffer[32];
-  const std::to_chars_result r = std::to_chars(buffer, buffer + sizeof buffer, value);
-  out.append(buffer, r.ptr);
-}
+void appendNumber(std::string& out, double value) { out += shortestText(value); }
 
 std::runtime_error formatError(const std::string& path, int line, const std::string& what) {
   return std::runtime_error(path + ":" + std::to_string(line) + ": " + what +
@@ -29,6 +25,13 @@ std::runtime_error formatError(const std::string& path, int line, const std::str
 }  // namespace
 
 std::string formatTrajectory(const Trajectory& trajectory) {
+  for (const TrajectoryBody& b : trajectory.bodies) {
+    const bool blank = std::any_of(b.name.begin(), b.name.end(),
+                                   [](unsigned char c) { return std::isspace(c) != 0; });
+    if (b.name.empty() || blank)
+      throw std::invalid_argument("trajectory body name '" + b.name +
+                                  "' must be non-empty and free of white space");
+  }
   std::string out = "# boxsim trajectory 1\n";
   for (const auto& [key, value] : trajectory.meta) out += "# " + key + ": " + value + "\n";
   for (std::size_t i = 0; i < trajectory.bodies.size(); ++i) {

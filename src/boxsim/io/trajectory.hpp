@@ -39,9 +39,9 @@ struct TrajectoryFrame {
   double t = 0.0;          ///< s
   double kinetic = 0.0;    ///< J
   double potential = 0.0;  ///< J
-  int contacts = 0;        ///< contact points (or colliding pairs) at the end of the frame
-  int events = 0;          ///< collision events (impulses) during the frame
-  int bisections = 0;      ///< bisection steps (time-of-impact searches) during the frame
+  int contacts = 0;        ///< contact manifolds (touching pairs) at the end of the frame
+  int events = 0;          ///< collision events during the frame (StepStats::events)
+  int bisections = 0;      ///< bisection steps (roll-backs) during the frame
   std::vector<Vec3> x;     ///< position of each body, m
   std::vector<Quat> q;     ///< orientation of each body
 };
@@ -56,6 +56,7 @@ struct Trajectory {
 };
 
 /// Formats a trajectory in the file format above (full double precision, round-trippable).
+/// Throws std::invalid_argument when a body name is empty or holds white space.
 std::string formatTrajectory(const Trajectory& trajectory);
 
 /// Writes formatTrajectory() to path, whole or not at all (temporary file, then rename).
