@@ -22,10 +22,11 @@ namespace boxsim {
 struct BasicCollidingParams {
   /// Integration scheme between collisions.
   /// DEVIATION(\thesis{§6.2}): the thesis integrated with forward Euler; here semi-implicit
-  /// Euler is the default. Forward Euler adds g²Δt²/2 of energy per unit mass every step in
-  /// free flight, about g Δt √(2 g h) per bounce of height h, while restitution removes
-  /// (1 - e²) g h. The two balance at h* = 2 g Δt² / (1 - e²)², 0.15 m at 60 Hz with e = 0.9:
-  /// under forward Euler a dropped box never comes to rest but keeps bouncing that high
+  /// Euler is the default. Forward Euler adds \f$g^2\Delta t^2/2\f$ of energy per unit mass
+  /// every step in free flight, about \f$g\,\Delta t\sqrt{2gh}\f$ per bounce of height h,
+  /// while restitution removes \f$(1 - e^2)\,g h\f$. The two balance at
+  /// \f[ h^* = \frac{2 g \Delta t^2}{(1 - e^2)^2}, \f]
+  /// 0.15 m at 60 Hz with e = 0.9: under forward Euler a dropped box never comes to rest but keeps bouncing that high
   /// (figure s2_1_die_height_energy shows both). ForwardEuler stays selectable.
   Integrator integrator = Integrator::SemiImplicitEuler;
   /// Bisection tolerances (\thesis{§3.3.1}).

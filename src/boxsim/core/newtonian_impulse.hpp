@@ -16,7 +16,12 @@ double relativeNormalVelocity(const RigidBody& a, const RigidBody& b, const Vec3
 /// Applies the frictionless Newtonian impulse j n at world point p (m) along the unit normal n
 /// (pointing from a to b) when the bodies approach there, so that the relative normal velocity
 /// becomes -restitution times what it was (Witkin & Baraff eq. 8-18):
-///   j = -(1 + e) v⁻ / (1/m_a + 1/m_b + n·(I_a⁻¹(r_a × n)) × r_a + n·(I_b⁻¹(r_b × n)) × r_b).
+/// \f[
+///   j = \frac{-(1 + e)\, v^-}{\frac{1}{m_a} + \frac{1}{m_b}
+///       + \hat n \cdot \left(I_a^{-1}(r_a \times \hat n)\right) \times r_a
+///       + \hat n \cdot \left(I_b^{-1}(r_b \times \hat n)\right) \times r_b}
+/// \f]
+/// with \f$v^- = \hat n \cdot (\dot p_b - \dot p_a)\f$ and \f$r_{a,b} = p - x_{a,b}\f$.
 /// \param restitution e in [0, 1]; 0 perfectly inelastic, 1 elastic
 /// \return the impulse magnitude j >= 0 (N s); 0 when the bodies separate or both are
 ///         immovable. b receives +j n, a receives -j n.
