@@ -1,16 +1,35 @@
 /// \file
-/// All-pairs broad phase with an axis-aligned bounding box reject (\thesis{§4.1}: the thesis'
-/// scenes are small enough to need no spatial subdivision). Pairs come out in increasing
-/// (i, j) order from two nested loops: no hashing, no pointer order, so the narrow phase, and
-/// everything after it, sees the same pairs in the same order on every run.
+/// The broad phase: which pairs of bodies the narrow phase looks at (\thesis{§4.1}: the
+/// thesis' scenes were small enough to need no spatial subdivision). The all-pairs test runs
+/// two nested loops; sweep and prune (sweep_and_prune.cpp) finds the same pairs by sorting.
+/// Either way pairs come out in increasing (i, j) order: no hashing, no pointer order, so the
+/// narrow phase, and everything after it, sees the same pairs in the same order on every run
+/// and with either broad phase.
 #include "boxsim/collision/broad_phase.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "boxsim/collision/contact_manifold.hpp"
 #include "boxsim/collision/separating_axis.hpp"
+#include "boxsim/collision/sweep_and_prune.hpp"
 
 namespace boxsim {
+
+std::string broadPhaseName(BroadPhase kind) {
+  switch (kind) {
+    case BroadPhase::AllPairs: return "all_pairs";
+    case BroadPhase::SweepAndPrune: return "sweep_and_prune";
+  }
+  throw std::invalid_argument("broadPhaseName: not a BroadPhase value");
+}
+
+BroadPhase parseBroadPhase(const std::string& name) {
+  for (BroadPhase kind : {BroadPhase::AllPairs, BroadPhase::SweepAndPrune})
+    if (name == broadPhaseName(kind)) return kind;
+  throw std::invalid_argument("unknown broad phase '" + name +
+                              "'; valid broad phases: all_pairs, sweep_and_prune");
+}
 
 void obbBounds(const Obb& box, double margin, Vec3& lo, Vec3& hi) {
   // The box's reach along world axis k is sum_i |R_ki| h_i: each of its own axes contributes
@@ -20,7 +39,10 @@ void obbBounds(const Obb& box, double margin, Vec3& lo, Vec3& hi) {
   hi = box.center + reach;
 }
 
-std::vector<std::pair<int, int>> candidatePairs(const World& world, double margin) {
+std::vector<std::pair<int, int>> candidatePairs(const World& world, double margin,
+                                                BroadPhase kind) {
+  if (kind == BroadPhase::SweepAndPrune) return sweepAndPrunePairs(world, margin);
+
   const int n = static_cast<int>(world.bodies.size());
   std::vector<Vec3> lo(n), hi(n);
   for (int i = 0; i < n; ++i) obbBounds(Obb::of(world.bodies[i]), 0.0, lo[i], hi[i]);
@@ -30,20 +52,16 @@ std::vector<std::pair<int, int>> candidatePairs(const World& world, double margi
     for (int j = i + 1; j < n; ++j) {
       // Two immovable bodies (ground and wall) never need a contact between them.
       if (world.bodies[i].immovable && world.bodies[j].immovable) continue;
-      // Bounds closer than margin on every axis: touching bounds (gap 0) are candidates, so a
-      // box resting exactly on the ground is found with margin 0.
-      bool overlap = true;
-      for (int k = 0; k < 3 && overlap; ++k)
-        overlap = lo[j][k] - hi[i][k] <= margin && lo[i][k] - hi[j][k] <= margin;
-      if (overlap) pairs.emplace_back(i, j);
+      if (boundsWithin(lo[i], hi[i], lo[j], hi[j], margin)) pairs.emplace_back(i, j);
     }
   }
   return pairs;
 }
 
-std::vector<ContactManifold> findContacts(const World& world, double margin) {
+std::vector<ContactManifold> findContacts(const World& world, double margin,
+                                          BroadPhase kind) {
   std::vector<ContactManifold> contacts;
-  for (const auto& [i, j] : candidatePairs(world, margin)) {
+  for (const auto& [i, j] : candidatePairs(world, margin, kind)) {
     ContactManifold m = collideBoxes(Obb::of(world.bodies[i]), Obb::of(world.bodies[j]), margin);
     if (m.count == 0) continue;
     m.a = i;
@@ -57,9 +75,10 @@ bool pairIntersects(const World& world, int i, int j, double tolerance) {
   return separatingAxisTest(Obb::of(world.bodies[i]), Obb::of(world.bodies[j])).depth > tolerance;
 }
 
-std::pair<int, int> firstIntersectingPair(const World& world, double tolerance) {
+std::pair<int, int> firstIntersectingPair(const World& world, double tolerance,
+                                          BroadPhase kind) {
   // A negative tolerance asks about boxes closer than -tolerance, so widen the reject to match.
-  for (const std::pair<int, int>& p : candidatePairs(world, std::max(0.0, -tolerance)))
+  for (const std::pair<int, int>& p : candidatePairs(world, std::max(0.0, -tolerance), kind))
     if (pairIntersects(world, p.first, p.second, tolerance)) return p;
   return {-1, -1};
 }

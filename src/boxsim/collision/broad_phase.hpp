@@ -1,9 +1,11 @@
 /// \file
 /// Candidate pairs for the narrow phase. \thesis{§4.1}: the thesis used no spatial
-/// subdivision for its small scenes; this is the all-pairs test with an axis-aligned bounding
-/// box reject, in a fixed order.
+/// subdivision for its small scenes and names it a necessity for larger ones. Two broad
+/// phases give the same pairs in the same fixed order: the thesis' all-pairs test with an
+/// axis-aligned bounding box reject, and sweep and prune (sweep_and_prune.hpp), the default.
 #pragma once
 
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -12,27 +14,59 @@
 
 namespace boxsim {
 
+/// Which broad phase finds the candidate pairs. Both return the same list in the same order,
+/// so the choice changes only speed, never a trajectory.
+enum class BroadPhase {
+  /// Every pair tested, O(n²) for n bodies: what \thesis{§4.1} did for its small scenes.
+  AllPairs,
+  /// Sort and sweep along one axis, O(n log n + k) for k pairs (sweepAndPrunePairs).
+  SweepAndPrune,
+};
+
+/// The name of a broad phase in scene files and on the command line: "all_pairs" or
+/// "sweep_and_prune".
+std::string broadPhaseName(BroadPhase kind);
+
+/// The broad phase called `name` ("all_pairs" or "sweep_and_prune", as broadPhaseName gives).
+/// Throws std::invalid_argument, listing the valid names, for any other name.
+BroadPhase parseBroadPhase(const std::string& name);
+
 /// World-space axis-aligned bounds of a box, grown by margin (m) on every side: the centre
 /// plus or minus |R| h + margin, with R the box's axes and h its half extents (m). Exact: each
 /// face of the bounds touches a corner of the box when margin = 0.
 void obbBounds(const Obb& box, double margin, Vec3& lo, Vec3& hi);
 
-/// All index pairs (i, j), i < j, not both immovable, whose bounds are at most margin (m)
-/// apart along every world axis (touching bounds count), in increasing (i, j) order.
-/// Deterministic: nested loops over body indices, nothing hashed or sorted by address.
-std::vector<std::pair<int, int>> candidatePairs(const World& world, double margin = 0.0);
+/// True when bounds [loA, hiA] and [loB, hiB] (m) are at most margin (m) apart along every
+/// world axis; touching bounds (gap 0) count, so a box resting exactly on the ground is found
+/// with margin 0. Symmetric in A and B. The one test both broad phases apply to a pair, which
+/// is what makes their results equal bit for bit.
+inline bool boundsWithin(const Vec3& loA, const Vec3& hiA, const Vec3& loB, const Vec3& hiB,
+                         double margin) {
+  for (int k = 0; k < 3; ++k)
+    if (!(loB[k] - hiA[k] <= margin && loA[k] - hiB[k] <= margin)) return false;
+  return true;
+}
+
+/// All index pairs (i, j), i < j, not both immovable, whose bounds (obbBounds with margin 0)
+/// pass boundsWithin(margin) (m), in increasing (i, j) order. Deterministic and independent
+/// of `kind`: AllPairs runs nested loops over body indices in O(n²); SweepAndPrune
+/// (sweepAndPrunePairs) sorts in O(n log n + k) for k pairs and returns the same list.
+std::vector<std::pair<int, int>> candidatePairs(const World& world, double margin = 0.0,
+                                                BroadPhase kind = BroadPhase::SweepAndPrune);
 
 /// Every pair of bodies whose manifold has at least one point (depth > -margin, m), with a and
 /// b filled in, in increasing (a, b) order: collideBoxes on each of candidatePairs(world,
-/// margin). \thesis{§3.2}
-std::vector<ContactManifold> findContacts(const World& world, double margin = 0.0);
+/// margin, kind). The result does not depend on `kind`. \thesis{§3.2}
+std::vector<ContactManifold> findContacts(const World& world, double margin = 0.0,
+                                          BroadPhase kind = BroadPhase::SweepAndPrune);
 
 /// True when bodies i and j overlap with a separating-axis depth above `tolerance` (m).
 bool pairIntersects(const World& world, int i, int j, double tolerance);
 
 /// The first pair (in candidatePairs order) whose separating-axis depth exceeds `tolerance`
 /// (m), or (-1, -1) when none does. A negative tolerance also reports pairs closer than
-/// -tolerance.
-std::pair<int, int> firstIntersectingPair(const World& world, double tolerance);
+/// -tolerance. The result does not depend on `kind`.
+std::pair<int, int> firstIntersectingPair(const World& world, double tolerance,
+                                          BroadPhase kind = BroadPhase::SweepAndPrune);
 
 }  // namespace boxsim

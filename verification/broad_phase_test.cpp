@@ -1,0 +1,250 @@
+// Verification of the broad phase (\thesis{§4.1}): sweep and prune against the all-pairs test
+// as an independent reference. The claim is equality, element for element and in order, not
+// "the same pairs up to order": the narrow phase and everything after it must see the same
+// sequence whichever broad phase runs, or trajectories would differ bit for bit.
+//
+// Scenes are chosen to break a sweep: boxes whose sizes span two decades (long intervals
+// overlap many short ones along the sweep axis), boxes snapped to a grid so bounds touch
+// exactly and sort keys tie, immovable ground and walls at arbitrary indices, and the
+// thesis' pyramid and clump, where every contact is an exact touch.
+#include <catch2/catch.hpp>
+#include <gsl/gsl_rng.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "boxsim/collision/broad_phase.hpp"
+#include "boxsim/collision/sweep_and_prune.hpp"
+#include "boxsim/io/scene_builders.hpp"
+
+using namespace boxsim;
+
+namespace {
+
+using Pairs = std::vector<std::pair<int, int>>;
+
+/// Seeded GSL generator (mt19937: the same numbers on every platform), freed on scope exit.
+class Random {
+ public:
+  explicit Random(unsigned long seed) : r_(gsl_rng_alloc(gsl_rng_mt19937)) {
+    gsl_rng_set(r_, seed);
+  }
+  ~Random() { gsl_rng_free(r_); }
+  Random(const Random&) = delete;
+  Random& operator=(const Random&) = delete;
+  double uniform(double lo, double hi) { return lo + (hi - lo) * gsl_rng_uniform(r_); }
+  int integer(int lo, int hi) {  // uniform in [lo, hi]
+    return lo + static_cast<int>(gsl_rng_uniform_int(r_, static_cast<unsigned long>(hi - lo + 1)));
+  }
+  /// A multiple of `step` in [lo, hi]: snapped values make bounds touch and sort keys tie.
+  double snapped(double lo, double hi, double step) {
+    return lo + step * integer(0, static_cast<int>((hi - lo) / step));
+  }
+  /// A uniformly distributed rotation (Shoemake's subgroup algorithm).
+  Quat rotation() {
+    const double u1 = uniform(0, 1), u2 = uniform(0, 2 * kPi), u3 = uniform(0, 2 * kPi);
+    const Quat q(std::sqrt(u1) * std::cos(u3), std::sqrt(1 - u1) * std::sin(u2),
+                 std::sqrt(1 - u1) * std::cos(u2), std::sqrt(u1) * std::sin(u3));
+    return q.normalized();
+  }
+
+ private:
+  gsl_rng* r_;
+};
+
+/// A random scene of 2-300 boxes with edges of 0.05-5 m in a cube whose side grows with the
+/// cube root of the count, so density (and the share of overlapping pairs) varies from scene
+/// to scene but not with size. Every third scene is snapped: axis-aligned boxes with edges and
+/// positions on a 0.25 m grid, where many bounds touch exactly and many sort keys tie.
+/// With `immovables`, a ground and two walls are inserted at random places in the body list.
+World randomScene(Random& random, bool snapped, bool immovables) {
+  World world;
+  const int count = random.integer(2, 300);
+  double side = random.uniform(1.0, 6.0) * std::cbrt(static_cast<double>(count));
+  // A multiple of 0.5 m keeps every snapped coordinate, and so every bound, exact in binary.
+  if (snapped) side = 0.5 * std::round(2.0 * side);
+  const int groundAt = immovables ? random.integer(0, count) : -1;
+  const int wallsAt = immovables ? random.integer(0, count) : -1;
+  for (int i = 0; i <= count; ++i) {
+    if (i == groundAt) world.addGround(0.0, side);
+    if (i == wallsAt) {
+      for (double x : {-0.5 * side, 0.5 * side}) {
+        RigidBody wall = RigidBody::immovableBox(Vec3(0.1, side, side));
+        wall.s.x = Vec3(x, side, 0.0);
+        world.add(wall, "wall");
+      }
+    }
+    if (i == count) break;
+    Vec3 edges, x;
+    for (int k = 0; k < 3; ++k) {
+      edges[k] = snapped ? random.snapped(0.25, 5.0, 0.25) : random.uniform(0.05, 5.0);
+      x[k] = snapped ? random.snapped(-0.5 * side, 0.5 * side, 0.25)
+                     : random.uniform(-0.5 * side, 0.5 * side);
+    }
+    x.y() += 0.5 * side;  // mostly above the ground, whose top is y = 0
+    RigidBody body = RigidBody::box(0.5 * edges, 1.0);
+    body.s.x = x;
+    if (!snapped) body.s.q = random.rotation();
+    world.add(body, "box");
+  }
+  return world;
+}
+
+/// Bitwise equality of two manifolds: both broad phases must hand the narrow phase the same
+/// pairs, so its answers must be the same bits, not merely close.
+bool sameManifold(const ContactManifold& m, const ContactManifold& n) {
+  if (m.a != n.a || m.b != n.b || m.normal != n.normal || m.kind != n.kind ||
+      m.depth != n.depth || m.count != n.count)
+    return false;
+  for (int k = 0; k < m.count; ++k)
+    if (m.points[k].position != n.points[k].position || m.points[k].depth != n.points[k].depth ||
+        m.points[k].featureId != n.points[k].featureId)
+      return false;
+  return true;
+}
+
+bool sameContacts(const std::vector<ContactManifold>& p, const std::vector<ContactManifold>& q) {
+  if (p.size() != q.size()) return false;
+  for (std::size_t k = 0; k < p.size(); ++k)
+    if (!sameManifold(p[k], q[k])) return false;
+  return true;
+}
+
+/// The clump of \thesis{Fig. 6.7} after every cube has moved for t seconds at its initial
+/// velocity: by t = 0.5 s neighbours overlap, and they keep overlapping more after that.
+World collapsedClump(int count, double t) {
+  World world;
+  world.addGround(0.0, 100.0);
+  addClump(world, ClumpSpec{count});
+  for (RigidBody& body : world.bodies) {
+    body.s.x += t * body.v;
+    body.updateDerived();
+  }
+  return world;
+}
+
+}  // namespace
+
+TEST_CASE("Sweep and prune returns exactly the all-pairs list on 200 random scenes",
+          "[collision][broad_phase]") {
+  Random random(20030501);
+  long totalPairs = 0;
+  for (int scene = 0; scene < 200; ++scene) {
+    const bool snapped = scene % 3 == 0;
+    const bool immovables = scene % 2 == 0;
+    const World world = randomScene(random, snapped, immovables);
+    for (double margin : {0.0, 0.1}) {
+      INFO("scene " << scene << ", " << world.bodies.size() << " bodies, margin " << margin
+                    << (snapped ? ", snapped" : "") << (immovables ? ", with immovables" : ""));
+      const Pairs reference = candidatePairs(world, margin, BroadPhase::AllPairs);
+      REQUIRE(sweepAndPrunePairs(world, margin) == reference);
+      REQUIRE(candidatePairs(world, margin, BroadPhase::SweepAndPrune) == reference);
+      totalPairs += static_cast<long>(reference.size());
+    }
+  }
+  // The scenes must give the comparison something to compare.
+  CHECK(totalPairs > 100000);
+}
+
+TEST_CASE("Sweep and prune reports touching bounds: the base-20 pyramid's 590 exact contacts",
+          "[collision][broad_phase]") {
+  World world;
+  world.addGround(0.0, 50.0);
+  REQUIRE(addPyramid(world, PyramidSpec{20}) == 210);
+  // Unit cubes on a half-integer grid touch exactly: 19 + 18 + ... + 0 = 190 side by side in
+  // the rows, 2 under each of the 190 cubes above the bottom row, and 20 on the ground.
+  const Pairs reference = candidatePairs(world, 0.0, BroadPhase::AllPairs);
+  CHECK(reference.size() == 190 + 2 * 190 + 20);
+  CHECK(sweepAndPrunePairs(world, 0.0) == reference);
+  CHECK(candidatePairs(world, 0.1, BroadPhase::SweepAndPrune) ==
+        candidatePairs(world, 0.1, BroadPhase::AllPairs));
+}
+
+TEST_CASE("Sweep and prune returns exactly the all-pairs list on the 1000-cube clump",
+          "[collision][broad_phase]") {
+  World world;
+  REQUIRE(addClump(world, ClumpSpec{1000}) == 1000);
+  // At the start the cubes are 1 m apart: no pair at margin 0, and at margin 1 m every cube
+  // touches its 26 grid neighbours, 3·900 + 6·810 + 4·729 = 10476 pairs on a 10³ grid.
+  CHECK(sweepAndPrunePairs(world, 0.0).empty());
+  CHECK(candidatePairs(world, 0.0, BroadPhase::AllPairs).empty());
+  const Pairs neighbours = candidatePairs(world, 1.0, BroadPhase::AllPairs);
+  CHECK(neighbours.size() == 10476);
+  CHECK(sweepAndPrunePairs(world, 1.0) == neighbours);
+
+  for (double t : {0.5, 1.0, 1.5}) {
+    const World collapsed = collapsedClump(1000, t);
+    for (double margin : {0.0, 0.1}) {
+      INFO("t = " << t << " s, margin " << margin);
+      const Pairs reference = candidatePairs(collapsed, margin, BroadPhase::AllPairs);
+      CHECK(!reference.empty());
+      CHECK(sweepAndPrunePairs(collapsed, margin) == reference);
+    }
+  }
+}
+
+TEST_CASE("findContacts and firstIntersectingPair give identical results with both broad phases",
+          "[collision][broad_phase]") {
+  Random random(1968);
+  int scenesWithContacts = 0;
+  for (int scene = 0; scene < 40; ++scene) {
+    const World world = randomScene(random, scene % 3 == 0, scene % 2 == 0);
+    for (double margin : {0.0, 0.1}) {
+      INFO("scene " << scene << ", margin " << margin);
+      const std::vector<ContactManifold> reference =
+          findContacts(world, margin, BroadPhase::AllPairs);
+      CHECK(sameContacts(findContacts(world, margin, BroadPhase::SweepAndPrune), reference));
+      scenesWithContacts += reference.empty() ? 0 : 1;
+    }
+    for (double tolerance : {0.0, 0.01, -0.1}) {
+      INFO("scene " << scene << ", tolerance " << tolerance);
+      CHECK(firstIntersectingPair(world, tolerance, BroadPhase::SweepAndPrune) ==
+            firstIntersectingPair(world, tolerance, BroadPhase::AllPairs));
+    }
+  }
+  CHECK(scenesWithContacts > 60);
+
+  const World clump = collapsedClump(1000, 1.0);
+  const std::vector<ContactManifold> reference = findContacts(clump, 0.0, BroadPhase::AllPairs);
+  CHECK(reference.size() > 1000);
+  CHECK(sameContacts(findContacts(clump, 0.0, BroadPhase::SweepAndPrune), reference));
+  CHECK(firstIntersectingPair(clump, 0.0, BroadPhase::SweepAndPrune) ==
+        firstIntersectingPair(clump, 0.0, BroadPhase::AllPairs));
+  // The defaults are sweep and prune.
+  CHECK(sameContacts(findContacts(clump), reference));
+}
+
+TEST_CASE("Sweep and prune matches all pairs when a body's state is not finite",
+          "[collision][broad_phase]") {
+  World world = collapsedClump(27, 0.5);
+  // A NaN centre has NaN bounds, which overlap nothing.
+  world.bodies[5].s.x = Vec3(std::nan(""), 1.0, 1.0);
+  // A tilted box of infinite length has bounds (-inf, inf) on every axis and so overlaps every
+  // body, the other infinite one included: that pair is found once, outside the sweep.
+  for (int i : {9, 12}) {
+    world.bodies[i].halfExtents.x() = std::numeric_limits<double>::infinity();
+    world.bodies[i].s.q = axisAngleDegrees(Vec3(1.0, 1.0, 1.0), 30.0);
+    world.bodies[i].updateDerived();
+  }
+  for (double margin : {0.0, 0.1}) {
+    const Pairs reference = candidatePairs(world, margin, BroadPhase::AllPairs);
+    CHECK(std::count(reference.begin(), reference.end(), std::make_pair(9, 12)) == 1);
+    CHECK(sweepAndPrunePairs(world, margin) == reference);
+  }
+}
+
+TEST_CASE("Broad phase names round-trip and unknown names are rejected with the valid ones",
+          "[collision][broad_phase]") {
+  for (BroadPhase kind : {BroadPhase::AllPairs, BroadPhase::SweepAndPrune})
+    CHECK(parseBroadPhase(broadPhaseName(kind)) == kind);
+  CHECK(broadPhaseName(BroadPhase::AllPairs) == "all_pairs");
+  CHECK(broadPhaseName(BroadPhase::SweepAndPrune) == "sweep_and_prune");
+  CHECK_THROWS_AS(parseBroadPhase("octree"), std::invalid_argument);
+  CHECK_THROWS_WITH(parseBroadPhase("octree"),
+                    Catch::Contains("all_pairs") && Catch::Contains("sweep_and_prune"));
+}
