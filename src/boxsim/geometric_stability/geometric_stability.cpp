@@ -1,0 +1,241 @@
+/// \file
+/// SETGEOMETRICALLYSTABLE (\alg{A.2 L1-L20}, \thesis{§5.4}), step by step.
+///
+/// The thesis sweeps the contact points from the lowest up, so that the body under a contact
+/// has its final verdict before the body over it is judged. The two main things the pseudocode
+/// leaves open are settled so (the DEVIATION comments give these and the others, with reasons):
+///  - which body is "top": the one the manifold normal points to when the normal is along y;
+///    a contact whose normal is off the y axis has no top and rules out both its bodies;
+///  - the verdict must not depend on the order in which contacts of equal height are met, so a
+///    body ruled out once stays ruled out.
+#include "boxsim/geometric_stability/geometric_stability.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+
+namespace boxsim {
+namespace {
+
+using Vec2 = Eigen::Vector2d;  // a point of the xz plane: (x, z), m
+
+/// The bottom face of a box: what "the bottom plane of the box" (\thesis{§5.4}) means for a box
+/// of any orientation.
+struct BottomFace {
+  bool level = false;            ///< its outward normal is along −y within normalTolerance
+  std::array<Vec2, 4> corners{};  ///< xz projections, numbered as in the header's diagram
+  double tolerance = 0.0;        ///< m: how near a point must be to a corner to mark it
+};
+
+/// The face of `body` whose outward normal points most nearly down.
+BottomFace bottomFaceOf(const RigidBody& body, const GeometricStabilityParams& params) {
+  BottomFace face;
+  int k = 0;
+  for (int i = 1; i < 3; ++i)
+    if (std::abs(body.R(1, i)) > std::abs(body.R(1, k))) k = i;
+  face.level = 1.0 - std::abs(body.R(1, k)) <= params.normalTolerance;
+  // The outward normal of the chosen face points down: against the axis if the axis points up.
+  const double down = body.R(1, k) > 0.0 ? -1.0 : 1.0;
+  const Vec3 centre = body.s.x + down * body.halfExtents[k] * body.R.col(k);
+  const int iu = (k + 1) % 3;
+  const int iv = (k + 2) % 3;
+  const Vec3 u = body.halfExtents[iu] * body.R.col(iu);
+  const Vec3 v = body.halfExtents[iv] * body.R.col(iv);
+  static constexpr std::array<double, 4> kSignU = {1.0, -1.0, -1.0, 1.0};
+  static constexpr std::array<double, 4> kSignV = {1.0, 1.0, -1.0, -1.0};
+  for (int c = 0; c < 4; ++c) {
+    const Vec3 p = centre + kSignU[c] * u + kSignV[c] * v;
+    face.corners[c] = Vec2(p.x(), p.z());
+  }
+  face.tolerance =
+      params.cornerTolerance * std::min(body.halfExtents[iu], body.halfExtents[iv]);
+  return face;
+}
+
+/// A direction along ±y within the tolerance (the "equivalent" of A.2 L13 and L19).
+bool alongY(const Vec3& n, const GeometricStabilityParams& params) {
+  return 1.0 - std::abs(n.y()) <= params.normalTolerance;
+}
+
+/// One point of a manifold whose normal is along y, as A.2 sees a contact: a point with a
+/// top and a bottom body.
+struct VerticalContact {
+  double height = 0.0;  ///< y of the point, m
+  int bottom = -1;      ///< body index
+  int top = -1;         ///< body index
+  int manifold = -1;    ///< index into the contacts
+  int point = -1;       ///< index into the manifold's points
+  Vec2 xz = Vec2::Zero();  ///< the point projected to the xz plane, m
+};
+
+/// A.2 L6: the points of the vertical contacts, lowest first; equal heights in order of the
+/// bottom body, the top body, then the input order, so the order is a function of the input
+/// alone. The verdict does not depend on that tie order (see the sweep).
+std::vector<VerticalContact> sortContactPointsAscending(
+    const std::vector<ContactManifold>& contacts, const GeometricStabilityParams& params) {
+  std::vector<VerticalContact> sorted;
+  for (int m = 0; m < static_cast<int>(contacts.size()); ++m) {
+    const ContactManifold& c = contacts[m];
+    if (!alongY(c.normal, params)) continue;
+    // The normal runs from a to b: when it points up, b lies on top of a.
+    const bool bOnTop = c.normal.y() > 0.0;
+    for (int k = 0; k < c.count; ++k) {
+      const Vec3& p = c.points[k].position;
+      sorted.push_back({p.y(), bOnTop ? c.a : c.b, bOnTop ? c.b : c.a, m, k, Vec2(p.x(), p.z())});
+    }
+  }
+  const auto key = [](const VerticalContact& c) {
+    return std::make_tuple(c.height, c.bottom, c.top, c.manifold, c.point);
+  };
+  std::sort(sorted.begin(), sorted.end(),
+            [&](const VerticalContact& l, const VerticalContact& r) { return key(l) < key(r); });
+  return sorted;
+}
+
+/// z component of (b − a) × (c − a) in the xz plane: > 0 when a, b, c turn counter-clockwise.
+double cross(const Vec2& a, const Vec2& b, const Vec2& c) {
+  return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+}
+
+/// Convex hull of xz points, counter-clockwise, collinear points dropped (Andrew's monotone
+/// chain: lexicographic sort, so the hull is a function of the point set alone).
+std::vector<Vec2> convexHull(std::vector<Vec2> points) {
+  std::sort(points.begin(), points.end(), [](const Vec2& l, const Vec2& r) {
+    return std::make_pair(l.x(), l.y()) < std::make_pair(r.x(), r.y());
+  });
+  if (points.size() < 3) return points;
+  std::vector<Vec2> hull(2 * points.size());
+  std::size_t n = 0;
+  for (const Vec2& p : points) {
+    while (n >= 2 && cross(hull[n - 2], hull[n - 1], p) <= 0.0) --n;
+    hull[n++] = p;
+  }
+  const std::size_t lowerSize = n + 1;
+  for (std::size_t i = points.size() - 1; i-- > 0;) {
+    while (n >= lowerSize && cross(hull[n - 2], hull[n - 1], points[i]) <= 0.0) --n;
+    hull[n++] = points[i];
+  }
+  hull.resize(n - 1);  // the last point repeats the first
+  return hull;
+}
+
+/// True when every corner of `face` lies in the convex hull of `support`, or within
+/// face.tolerance outside it. A hull of fewer than 3 points has no area and covers nothing.
+bool hullCoversFace(const std::vector<Vec2>& support, const BottomFace& face) {
+  const std::vector<Vec2> hull = convexHull(support);
+  if (hull.size() < 3) return false;
+  for (const Vec2& q : face.corners) {
+    for (std::size_t i = 0; i < hull.size(); ++i) {
+      const Vec2& p0 = hull[i];
+      const Vec2& p1 = hull[(i + 1) % hull.size()];
+      // Signed distance of q to the left of the edge p0 -> p1 (inside is to the left).
+      if (cross(p0, p1, q) < -face.tolerance * (p1 - p0).norm()) return false;
+    }
+  }
+  return true;
+}
+
+/// What the sweep knows of one body besides its flag.
+struct BodyMarks {
+  std::array<bool, 4> corners{};  ///< A.2 L15: bottom-face corners marked so far
+  std::vector<Vec2> support;      ///< footnote rule: xz points of contacts with stable bodies
+  bool ruledOut = false;          ///< some contact disqualified it for good
+};
+
+void checkInput(const World& world, const std::vector<ContactManifold>& contacts,
+                const GeometricStabilityParams& params) {
+  if (!std::isfinite(params.normalTolerance) || params.normalTolerance < 0.0 ||
+      params.normalTolerance >= 1.0)
+    throw std::invalid_argument("geometric stability: normalTolerance must lie in [0, 1)");
+  if (!std::isfinite(params.cornerTolerance) || params.cornerTolerance < 0.0)
+    throw std::invalid_argument("geometric stability: cornerTolerance must be finite and >= 0");
+  const int n = static_cast<int>(world.bodies.size());
+  for (const ContactManifold& c : contacts)
+    if (c.a < 0 || c.a >= n || c.b < 0 || c.b >= n || c.count < 0 || c.count > 4)
+      throw std::invalid_argument("geometric stability: a contact manifold names body " +
+                                  std::to_string(c.a) + " or " + std::to_string(c.b) +
+                                  " (or has " + std::to_string(c.count) +
+                                  " points) in a world of " + std::to_string(n) + " bodies");
+}
+
+}  // namespace
+
+std::vector<char> setGeometricallyStable(const World& world,
+                                         const std::vector<ContactManifold>& contacts,
+                                         const GeometricStabilityParams& params) {
+  checkInput(world, contacts, params);
+  const int n = static_cast<int>(world.bodies.size());
+
+  // A.2 L1-L5: bodies of infinite mass are stable, every other body starts out unstable.
+  std::vector<char> stable(n, 0);
+  for (int i = 0; i < n; ++i) stable[i] = world.bodies[i].immovable ? 1 : 0;
+
+  std::vector<BodyMarks> marks(n);
+  std::vector<BottomFace> bottom(n);
+  for (int i = 0; i < n; ++i) bottom[i] = bottomFaceOf(world.bodies[i], params);
+
+  // A.2 L19-L20 for contacts whose normal is off the y axis.
+  // DEVIATION(A.2 L19-L20): applied to both bodies, and before the sweep. §5.4 asks that all of
+  // a body's contact normals be along ±y; a side contact has no top body, so applying L20 to
+  // "the top object" alone would rule out one of the two neighbours at random. And a side
+  // contact's points reach as high as the body's top face, where they tie with the contacts
+  // of the bodies resting on it: un-marking the body in the sweep could come after those were
+  // marked stable on its strength. Ruling it out first gives every body its final verdict
+  // before anything rests on it.
+  for (const ContactManifold& c : contacts) {
+    if (c.count == 0 || alongY(c.normal, params)) continue;
+    marks[c.a].ruledOut = true;
+    marks[c.b].ruledOut = true;
+  }
+
+  // A.2 L6: lowest contact points first, so a bottom body is judged before its top body.
+  const std::vector<VerticalContact> sorted = sortContactPointsAscending(contacts, params);
+
+  // A.2 L7-L8: each contact point in turn.
+  for (const VerticalContact& c : sorted) {
+    // A.2 L9-L11: the body judged is the top one.
+    const int o = c.top;
+    // DEVIATION(A.2 L20): an immovable top body (a ceiling resting on a box) keeps the verdict
+    // of L2-L3: nothing can move it, whatever is under it.
+    if (world.bodies[o].immovable) continue;
+
+    // A.2 L12-L13: the top body's outward normal at the point points down (the manifold normal
+    // is along y and the top body is the one it points away from below) and the bottom body is
+    // already stable.
+    // DEVIATION(A.2 L13): the outward normal is also required to be the top body's own face
+    // normal, i.e. the body is level. A tilted box resting on an edge or a corner touches along
+    // the other body's face normal, yet its own outward normal there is not −y and it has no
+    // bottom plane whose corners could be marked.
+    if (bottom[o].level && stable[c.bottom]) {
+      // A.2 L14-L15: mark the bottom-face corners this point coincides with, seen from above.
+      for (int k = 0; k < 4; ++k)
+        if ((c.xz - bottom[o].corners[k]).norm() <= bottom[o].tolerance)
+          marks[o].corners[k] = true;
+      marks[o].support.push_back(c.xz);
+
+      // A.2 L16-L17: all four corners marked (or, as the footnote's ablation, the support hull
+      // covers the bottom face) and nothing has ruled the body out.
+      const bool supported =
+          params.useSupportHull
+              ? hullCoversFace(marks[o].support, bottom[o])
+              : std::all_of(marks[o].corners.begin(), marks[o].corners.end(),
+                            [](bool marked) { return marked; });
+      // DEVIATION(A.2 L17): a body ruled out earlier stays out; otherwise a later point at the
+      // same height could mark it stable again after L20, and the verdict would depend on the
+      // order of points of equal height.
+      if (supported && !marks[o].ruledOut) stable[o] = 1;
+    } else {
+      // A.2 L18-L20: the outward normal here points down (or, on a tilted box, nowhere along
+      // y), never along +y, and the body under it is not stable: this contact can push the
+      // body, so it is not stable.
+      stable[o] = 0;
+      marks[o].ruledOut = true;
+    }
+  }
+  return stable;
+}
+
+}  // namespace boxsim

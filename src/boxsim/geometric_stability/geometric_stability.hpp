@@ -1,0 +1,73 @@
+/// \file
+/// SETGEOMETRICALLYSTABLE of \alg{A.2} (\thesis{§5.4}): which bodies cannot be accelerated by
+/// gravity (along −y) or by frictionless contact forces of any size, decided from the ground up.
+///
+/// A movable box qualifies when every one of its contact normals is along ±y and each of the
+/// four corners of its bottom face rests on a body that already qualifies. In the damped
+/// technique, COLLIDE (\alg{A.2 L11-L14}) uses the flags to zero the vertical momentum and the
+/// tipping components of the angular momentum of such bodies; the analytic technique can leave
+/// their stable-to-stable contacts out of its system (\thesis{§5.4}, with that chapter).
+///
+/// Corners of the bottom face (the face whose outward normal points down), in the plane of that
+/// face; u and v are the box's other two axes, so any yaw about y is allowed:
+/// \verbatim
+///           v
+///           ^
+///     1 +---|---+ 0       corner k = o + su h_u u + sv h_v v, o the bottom-face centre:
+///       |   |   |           0: (+,+)  1: (-,+)  2: (-,-)  3: (+,-)
+///       |   o---|---> u   a contact point marks corner k when its xz projection lies within
+///       |       |         the corner tolerance of corner k's xz projection
+///     2 +-------+ 3
+/// \endverbatim
+#pragma once
+
+#include <vector>
+
+#include "boxsim/collision/contact.hpp"
+#include "boxsim/core/world.hpp"
+
+namespace boxsim {
+
+/// Tolerances of the geometric-stability test. The thesis leaves the word "equivalent" of
+/// \alg{A.2 L13} and \alg{A.2 L19} and the coincidence of \alg{A.2 L15} unquantified.
+struct GeometricStabilityParams {
+  /// Unitless, in [0, 1): a direction n counts as along ±y when 1 − |n·y| is at most this.
+  /// It applies to contact normals and to the face normal that makes a box "level". 1e-4 is a
+  /// tilt of about 0.8°; a box tilted that much lifts one edge of a 1 m face by 14 mm, far more
+  /// than any contact margin, so it loses two corners anyway: the corner rule, not this
+  /// tolerance, is what rejects visibly tilted boxes.
+  double normalTolerance = 1e-4;
+  /// Unitless, >= 0, a fraction of the smaller half extent of the bottom face: a contact point
+  /// marks a corner when their xz projections are closer than this fraction times that half
+  /// extent (m). 1e-3 is 0.5 mm on a unit cube: it absorbs rounding and a flush edge, and
+  /// rejects a real overhang. Scaling with the box keeps the test the same at every size.
+  double cornerTolerance = 1e-3;
+  /// Ablation: the footnote of \thesis{§5.4} instead of the corner rule. A body then qualifies
+  /// when the xz convex hull of its support points (points of its downward contacts with
+  /// qualifying bodies) covers the xz projection of its bottom face, within the corner
+  /// tolerance. For boxes both rules agree: the support points lie in the bottom face, and a
+  /// hull of points inside a rectangle contains the rectangle only if it contains its corners.
+  bool useSupportHull = false;
+};
+
+/// One flag per body of `world`, 1 for a geometrically stable body, 0 otherwise.
+/// \param world     bodies with up-to-date derived rotation R (columns = box axes)
+/// \param contacts  every contact manifold of the world, as findContacts(world, margin) returns
+///                  them with a small margin (e.g. 1e-6 m), so that exactly touching boxes have
+///                  a manifold; in any order. A missing side contact can only make a body look
+///                  stable that is not.
+/// \param params    tolerances and the hull ablation
+/// \return flags in body order: immovable bodies are always stable; a movable body is stable
+///         when it is level (a face normal along −y), none of its contacts has a normal off
+///         the y axis, every contact under it is with a stable body, and the four corners of
+///         its bottom face coincide with points of those contacts. The result does not depend
+///         on the order of bodies or contacts.
+/// \throws std::invalid_argument when a manifold names a body outside the world, or a
+///         tolerance is negative, not finite, or normalTolerance >= 1.
+/// \thesis{§5.4}, \alg{A.2 L1-L20} (SETGEOMETRICALLYSTABLE); the deviations are in the
+/// chapter page \ref chapter_geometric_stability.
+std::vector<char> setGeometricallyStable(const World& world,
+                                         const std::vector<ContactManifold>& contacts,
+                                         const GeometricStabilityParams& params = {});
+
+}  // namespace boxsim
