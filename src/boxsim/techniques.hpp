@@ -15,7 +15,8 @@ namespace boxsim {
 
 /// Options shared by every technique that a command line can set.
 struct TechniqueOptions {
-  /// Integrator between collisions; empty: the technique's own default.
+  /// Integrator between collisions (basic_colliding only; the impulse-based techniques
+  /// integrate semi-implicitly by construction); empty: the technique's own default.
   std::optional<Integrator> integrator;
 };
 

@@ -1,0 +1,109 @@
+/// \file
+/// Contact normal models (\thesis{§3.3.2}).
+#include "boxsim/impulse_damped/contact_normal.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "boxsim/collision/separating_axis.hpp"
+
+namespace boxsim {
+
+std::string contactNormalModelName(ContactNormalModel model) {
+  switch (model) {
+    case ContactNormalModel::SeparatingAxis: return "separating_axis";
+    case ContactNormalModel::PreviousClosestFace: return "previous_closest_face";
+    case ContactNormalModel::SignedDistance: return "signed_distance";
+  }
+  return "unknown";
+}
+
+ContactNormalModel parseContactNormalModel(const std::string& name) {
+  for (ContactNormalModel m : {ContactNormalModel::SeparatingAxis,
+                               ContactNormalModel::PreviousClosestFace,
+                               ContactNormalModel::SignedDistance})
+    if (contactNormalModelName(m) == name) return m;
+  throw std::invalid_argument("unknown contact normal model '" + name +
+                              "'; use separating_axis, previous_closest_face or signed_distance");
+}
+
+double boxSignedDistance(const Obb& box, const Vec3& p, Vec3* gradient) {
+  const Vec3 local = box.axes.transpose() * (p - box.center);
+  const Vec3 q = local.cwiseAbs() - box.halfExtents;
+  const Vec3 sign(local.x() < 0.0 ? -1.0 : 1.0, local.y() < 0.0 ? -1.0 : 1.0,
+                  local.z() < 0.0 ? -1.0 : 1.0);
+  if ((q.array() <= 0.0).all()) {
+    // Inside: the nearest face is the one whose slab the point is least deep in.
+    int k = 0;
+    for (int i = 1; i < 3; ++i)
+      if (q[i] > q[k]) k = i;
+    if (gradient) *gradient = sign[k] * box.axes.col(k);
+    return q[k];
+  }
+  const Vec3 outside = q.cwiseMax(0.0);
+  if (gradient) *gradient = box.axes * (outside.cwiseProduct(sign)).normalized();
+  return outside.norm();
+}
+
+Vec3 ContactNormalTracker::signedDistanceNormal(const World& world,
+                                                const ContactManifold& m) const {
+  // Guendelman et al. test the vertices of each body against the other's signed distance; the
+  // normal at a penetrating vertex is the distance's gradient. Boxes need no grid: the signed
+  // distance is closed form. The depth-weighted mean of the corners' gradients is the normal.
+  const Obb boxA = Obb::of(world.bodies[m.a]);
+  const Obb boxB = Obb::of(world.bodies[m.b]);
+  Vec3 sum = Vec3::Zero();
+  for (int k = 0; k < 8; ++k) {
+    Vec3 g;
+    const double inB = boxSignedDistance(boxB, boxA.corner(k), &g);
+    if (inB < 0.0) sum += -inB * (-g);  // B's outward normal points from b towards a
+    const double inA = boxSignedDistance(boxA, boxB.corner(k), &g);
+    if (inA < 0.0) sum += -inA * g;     // A's outward normal points from a towards b
+  }
+  // Edge-edge penetration puts no corner inside the other box: fall back to the manifold.
+  if (sum.norm() < 1e-12) return m.normal;
+  return sum.normalized();
+}
+
+std::vector<ImpulseContact> ContactNormalTracker::contactsOf(
+    const World& world, const std::vector<ContactManifold>& manifolds) {
+  std::vector<ImpulseContact> contacts;
+  contacts.reserve(manifolds.size());
+  for (const ContactManifold& m : manifolds) {
+    ImpulseContact c{m.a, m.b, m.centroid(), m.normal, m.depth};
+    const std::pair<int, int> key(m.a, m.b);
+    switch (model_) {
+      case ContactNormalModel::SeparatingAxis:
+        break;
+      case ContactNormalModel::SignedDistance:
+        c.normal = signedDistanceNormal(world, m);
+        break;
+      case ContactNormalModel::PreviousClosestFace: {
+        if (m.kind != AxisKind::EdgeEdge) {
+          // Remember the face the manifold was built on, signed so that it points from a to b.
+          const bool onB = m.kind == AxisKind::FaceB;
+          const Mat3& R = world.bodies[onB ? m.b : m.a].R;
+          int axis = 0;
+          for (int i = 1; i < 3; ++i)
+            if (std::abs(R.col(i).dot(m.normal)) > std::abs(R.col(axis).dot(m.normal))) axis = i;
+          current_[key] = FaceRef{onB, axis, R.col(axis).dot(m.normal) < 0.0 ? -1.0 : 1.0};
+        }
+        const auto previous = previous_.find(key);
+        if (previous != previous_.end()) {
+          const FaceRef& f = previous->second;
+          c.normal = f.sign * world.bodies[f.onB ? m.b : m.a].R.col(f.axis);
+        }
+        break;
+      }
+    }
+    contacts.push_back(c);
+  }
+  return contacts;
+}
+
+void ContactNormalTracker::endStep() {
+  previous_.swap(current_);
+  current_.clear();
+}
+
+}  // namespace boxsim

@@ -1,0 +1,66 @@
+/// \file
+/// One contact per touching pair, with its normal chosen by one of three models
+/// (\thesis{§3.3.2} and its footnote): the separating-axis test's axis, the closest face kept
+/// from the previous step (the thesis' choice), or the gradient of the box's object-space signed
+/// distance (the improvement the footnote proposes, after Guendelman et al.'s signed distance).
+#pragma once
+
+#include <map>
+#include <utility>
+#include <vector>
+
+#include "boxsim/collision/contact.hpp"
+#include "boxsim/core/world.hpp"
+#include "boxsim/impulse_damped/impulse_params.hpp"
+
+namespace boxsim {
+
+/// A collision as COLLIDE sees it (\alg{A.2 L7} findContactPoint): one point and one normal
+/// per pair of bodies.
+struct ImpulseContact {
+  int a = -1;                   ///< body index
+  int b = -1;                   ///< body index, a < b
+  Vec3 point = Vec3::Zero();    ///< m: the centroid of the pair's contact manifold
+  Vec3 normal = Vec3::UnitY();  ///< unit, from a towards b
+  double depth = 0.0;           ///< m, deepest penetration of the manifold (negative: a gap)
+};
+
+/// Signed distance of world point p from the surface of a box, m: negative inside. When
+/// `gradient` is given it receives the unit outward gradient (inside: the normal of the nearest
+/// face; outside: the direction from the nearest surface point).
+double boxSignedDistance(const Obb& box, const Vec3& p, Vec3* gradient = nullptr);
+
+/// Chooses contact normals and remembers, per pair, the closest face of the previous step.
+class ContactNormalTracker {
+ public:
+  /// A tracker for the given model.
+  explicit ContactNormalTracker(ContactNormalModel model = ContactNormalModel::PreviousClosestFace)
+      : model_(model) {}
+
+  /// One ImpulseContact per manifold, in the manifolds' order. Under PreviousClosestFace the
+  /// normal is the current normal of the face that was closest to the pair in the previous step
+  /// (when the pair touched then); the face found now is remembered for the next step.
+  std::vector<ImpulseContact> contactsOf(const World& world,
+                                         const std::vector<ContactManifold>& manifolds);
+
+  /// Ends a step: the faces recorded during it become "the previous step's" faces.
+  void endStep();
+
+  /// The model in use.
+  ContactNormalModel model() const { return model_; }
+
+ private:
+  /// A face of body a or b: its normal is sign · (column `axis` of that body's R).
+  struct FaceRef {
+    bool onB = false;
+    int axis = 0;
+    double sign = 1.0;
+  };
+  Vec3 signedDistanceNormal(const World& world, const ContactManifold& m) const;
+
+  ContactNormalModel model_;
+  std::map<std::pair<int, int>, FaceRef> previous_;
+  std::map<std::pair<int, int>, FaceRef> current_;
+};
+
+}  // namespace boxsim

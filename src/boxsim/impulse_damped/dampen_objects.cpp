@@ -1,0 +1,118 @@
+/// \file
+/// DAMPENOBJECTS (\alg{A.2}, \thesis{§5.3}).
+#include "boxsim/impulse_damped/dampen_objects.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "boxsim/impulse_damped/impulse_pass.hpp"
+
+namespace boxsim {
+
+namespace {
+/// The axis of the box closest to ±y, as a signed world vector pointing up.
+Vec3 upmostAxis(const RigidBody& body) {
+  int k = 0;
+  for (int i = 1; i < 3; ++i)
+    if (std::abs(body.R(1, i)) > std::abs(body.R(1, k))) k = i;
+  return body.R(1, k) < 0.0 ? Vec3(-body.R.col(k)) : Vec3(body.R.col(k));
+}
+
+/// Distance between two orientations as quaternions, blind to the sign ambiguity q ~ -q.
+double quaternionDistance(const Quat& p, const Quat& q) {
+  return std::min((p.coeffs() - q.coeffs()).norm(), (p.coeffs() + q.coeffs()).norm());
+}
+}  // namespace
+
+bool isYAxisAligned(const RigidBody& body, double angleDeg) {
+  return upmostAxis(body).y() >= std::cos(angleDeg * kPi / 180.0);
+}
+
+void tiltTowardsYAxis(RigidBody& body, double maxAngle) {
+  const Vec3 up = upmostAxis(body);
+  const Vec3 axis = up.cross(Vec3::UnitY());
+  const double sine = axis.norm();
+  if (sine < 1e-15) return;
+  const double angle = std::min(std::atan2(sine, up.y()), maxAngle);
+  body.s.q = (Quat(Eigen::AngleAxisd(angle, axis / sine)) * body.s.q).normalized();
+  body.updateDerived();
+}
+
+void dampMomenta(World& world, double dt, const std::vector<char>& touched,
+                 const DampingParams& params, DampingStats* stats) {
+  const double u = world.gravity.norm() * dt;  // the velocity unit g Δt
+  const double k1 = std::exp(-params.linearRate * dt);
+  const double k2 = std::exp(-params.angularRate * dt);
+  const double k3 = std::exp(-params.alignedAngularRate * dt);
+  for (std::size_t i = 0; i < world.bodies.size(); ++i) {
+    RigidBody& o = world.bodies[i];
+    // A.2 L2: only bodies that had a contact interaction are damped.
+    if (o.immovable || !touched[i]) continue;
+    const double ell = o.halfExtents.minCoeff();
+    const double pUnit = o.mass * u;                              // momentum of speed g Δt
+    // Angular momentum of spin g Δt / ℓ about an axis of inertia (2/3) m ℓ² (a cube of half side ℓ).
+    const double lUnit = (2.0 / 3.0) * o.mass * ell * u;
+    const double rotationalBefore = o.s.L.dot(o.omega);
+    // A.2 L3-L5.
+    const bool yAxisAligned = isYAxisAligned(o, params.alignedAngleDeg);
+    o.s.P *= k1;
+    o.s.L *= k2;
+    // A.2 L6-L10: a box lying nearly flat and barely moving vertically is resting on a face.
+    if (yAxisAligned && std::abs(o.s.P.y()) < params.verticalVelocityEps * pUnit) {
+      o.s.P.y() = 0.0;
+      o.s.L *= k3;
+      tiltTowardsYAxis(o, params.tiltRateDegPerS * kPi / 180.0 * dt);
+    }
+    // A.2 L11-L19, component by component.
+    // DEVIATION(A.2 L14): the pseudocode tests ε5 twice, which would zero every component the
+    // first test shrank; the second test uses its own, smaller ε6 (k5 then has an effect).
+    for (int c = 0; c < 3; ++c) {
+      if (std::abs(o.s.P[c]) < params.linearSmallEps * pUnit) o.s.P[c] *= params.linearSmallFactor;
+      if (std::abs(o.s.P[c]) < params.linearZeroEps * pUnit) o.s.P[c] = 0.0;
+      if (std::abs(o.s.L[c]) < params.angularSmallEps * lUnit) o.s.L[c] *= params.angularSmallFactor;
+      if (std::abs(o.s.L[c]) < params.angularZeroEps * lUnit) o.s.L[c] = 0.0;
+    }
+    // A.2 L20-L21: a small spin about y is stopped only when it is non-negative, as written.
+    if (std::abs(o.s.L.y()) < params.spinZeroEps * lUnit && o.s.L.y() >= 0.0) o.s.L.y() = 0.0;
+    o.updateDerived();
+    // DEVIATION(A.2 L10, L16-L21): the rotational energy ½ Lᵀ R I⁻¹ Rᵀ L is not diagonal in
+    // the world components of L, so scaling or zeroing one of them, or turning the box with L
+    // held (tiltTowardsYAxis), can raise it. §5.3's rule is that damping never adds energy:
+    // where these steps did, L is scaled back to the energy it had on entry.
+    const double rotationalAfter = o.s.L.dot(o.omega);
+    if (rotationalAfter > rotationalBefore) {
+      o.s.L *= std::sqrt(rotationalBefore / rotationalAfter);
+      o.updateDerived();
+    }
+    if (stats) ++stats->damped;
+  }
+}
+
+DampingStats dampenObjects(World& world, double dt, const std::vector<char>& touched,
+                           const DampingParams& params) {
+  DampingStats stats;
+  dampMomenta(world, dt, touched, params, &stats);
+  // A.2 L22: integrateObjectPositions with the velocities as they now are.
+  const SavedPoses old = predictPositions(world, dt, Vec3::Zero());
+  // A.2 L23-L28: a body that would move less than ε10 and turn less than ε11 stays put.
+  // DEVIATION(A.2 L23): only bodies that had a contact interaction are snapped; a body in free
+  // flight at the top of its arc moves little in one step too, and must not hang there.
+  const double step2 = world.gravity.norm() * dt * dt;  // the length unit g Δt²
+  for (std::size_t i = 0; i < world.bodies.size(); ++i) {
+    RigidBody& o = world.bodies[i];
+    if (o.immovable || !touched[i]) continue;
+    const double ell = o.halfExtents.minCoeff();
+    const double deltaPosition = (o.s.x - old[i].first).norm();
+    const double deltaRotation = quaternionDistance(o.s.q, old[i].second);
+    if (deltaPosition < params.positionSnapEps * step2 &&
+        deltaRotation < params.rotationSnapEps * step2 / ell) {
+      o.s.x = old[i].first;
+      o.s.q = old[i].second;
+      o.updateDerived();
+      ++stats.snapped;
+    }
+  }
+  return stats;
+}
+
+}  // namespace boxsim

@@ -1,0 +1,41 @@
+/// \file
+/// DAMPENOBJECTS of \alg{A.2} (\thesis{§5.3}): bodies in contact are slowed down, never sped up;
+/// small velocities are shrunk and then zeroed; boxes lying nearly flat lose their vertical
+/// velocity and are turned the last bit flat; then positions are integrated, and a body that
+/// would barely move stays where it was.
+#pragma once
+
+#include <vector>
+
+#include "boxsim/core/world.hpp"
+#include "boxsim/impulse_damped/impulse_params.hpp"
+
+namespace boxsim {
+
+/// What DAMPENOBJECTS did in one step.
+struct DampingStats {
+  int damped = 0;   ///< bodies that had a contact interaction and were damped
+  int snapped = 0;  ///< bodies kept in place by the position/rotation snap (L23-L28)
+};
+
+/// True when one of the box's axes lies within `angleDeg` of the y axis (\alg{A.2 L3}
+/// checkYAxisAlignment).
+bool isYAxisAligned(const RigidBody& body, double angleDeg);
+
+/// Turns a body about its centre by at most `maxAngle` rad towards the nearest orientation
+/// with a face perpendicular to y (\alg{A.2 L10} tiltTowardsYAxis).
+void tiltTowardsYAxis(RigidBody& body, double maxAngle);
+
+/// Scales the momenta of the bodies marked `touched` (one flag per body) as \alg{A.2 L1-L21},
+/// with the thresholds of `params` turned into momenta for each body: velocities in units of
+/// g Δt times the mass, angular velocities in units of g Δt / ℓ times (2/3) m ℓ² (ℓ the body's
+/// smallest half extent). Never raises a body's kinetic energy. Does not move bodies.
+void dampMomenta(World& world, double dt, const std::vector<char>& touched,
+                 const DampingParams& params, DampingStats* stats = nullptr);
+
+/// The whole of DAMPENOBJECTS (\alg{A.2 L1-L28}): dampMomenta, then integrateObjectPositions
+/// with the current velocities (L22), then the snap of L23-L28.
+DampingStats dampenObjects(World& world, double dt, const std::vector<char>& touched,
+                           const DampingParams& params);
+
+}  // namespace boxsim

@@ -1,0 +1,23 @@
+/// \file
+/// FIXCONTACTCONSTRAINTS of \alg{A.2} (\thesis{§4.4}): interpenetration is removed from the
+/// ground up by moving the upper body of each contact along the contact normal, positions only,
+/// so no kinetic energy is added (the thesis' change to Guendelman et al.'s shock step).
+#pragma once
+
+#include <vector>
+
+#include "boxsim/core/world.hpp"
+#include "boxsim/impulse_damped/impulse_params.hpp"
+
+namespace boxsim {
+
+/// Contacts gathered with `margin` (m) are sorted by the height of their point (\alg{A.2 L1});
+/// for each, the upper body (higher centre; skipped when immovable) is nudged by ε1 ℓ along the
+/// lower-to-upper normal while the pair still overlaps by more than the slop (\alg{A.2 L2-L7}).
+/// ℓ is the upper body's smallest half extent. `held` (one flag per body, or empty) marks bodies
+/// that must not move (sleeping ones).
+/// \return the number of nudges made.
+int fixContactConstraints(World& world, double margin, const FixContactParams& params,
+                          const std::vector<char>& held = {});
+
+}  // namespace boxsim

@@ -1,0 +1,104 @@
+/// \file
+/// Parameters of the impulse-based step (Guendelman, Bridson and Fedkiw, "Nonconvex Rigid
+/// Bodies with Stacking", SIGGRAPH 2003, §7; \thesis{§2.5.2}, \thesis{§3.3.2}) and of the
+/// thesis' damped integration (\thesis{§5.2}, \thesis{§5.3}, \alg{A.2}).
+///
+/// The thesis gives no values for the constants k1…k9 and ε1…ε11 of \alg{A.2}. Every one here
+/// is chosen, justified, and expressed in units that scale with the body and the step, as
+/// \thesis{§6.3.1} asks: velocities in units of g Δt (the speed gravity adds in one step, the
+/// size of the velocity a resting box chatters with), angular velocities in units of g Δt / ℓ
+/// (ℓ: the body's smallest half extent), lengths in units of ℓ, and damping factors as rates per
+/// second turned into per-step factors exp(-λ Δt). A scene of 0.1 m boxes then behaves like a
+/// scene of 1 m boxes seen through a lens.
+#pragma once
+
+#include <string>
+
+namespace boxsim {
+
+/// How the normal of a contact between two interpenetrating boxes is chosen
+/// (\thesis{§3.3.2}).
+enum class ContactNormalModel {
+  /// The axis of least penetration of the separating-axis test, recomputed every time.
+  SeparatingAxis,
+  /// The thesis' choice: the face found closest when the pair first touched is kept from the
+  /// previous step, and its current normal is the contact normal (\thesis{§3.3.2}).
+  PreviousClosestFace,
+  /// The thesis' footnote: the gradient of an object-space signed distance of the box at the
+  /// deepest penetrating corner, as Guendelman et al. do with signed distance grids.
+  SignedDistance,
+};
+
+/// "separating_axis", "previous_closest_face" or "signed_distance".
+std::string contactNormalModelName(ContactNormalModel model);
+/// Parses the names of contactNormalModelName(); throws std::invalid_argument on others.
+ContactNormalModel parseContactNormalModel(const std::string& name);
+
+/// The impulse-based step of Guendelman et al., shared by both techniques.
+struct ImpulseParams {
+  /// Passes of collision processing (restitution `restitution`), Guendelman §7: 5.
+  int collisionIterations = 5;
+  /// Passes of contact processing with the restitution ramp of \alg{A.2 L5}: 10.
+  int contactIterations = 10;
+  /// How contact normals are chosen (collisions use the world's restitution, 0.9 by default
+  /// as \thesis{§3.3.2}).
+  ContactNormalModel normalModel = ContactNormalModel::PreviousClosestFace;
+  /// m per m of box size: boxes closer than this count as touching when contacts are
+  /// gathered (so a box resting exactly on another is "in contact"). 1e-3 ℓ.
+  double contactMargin = 1e-3;
+};
+
+/// Constants of DAMPENOBJECTS (\alg{A.2}), in the scaled units of this file's introduction.
+struct DampingParams {
+  /// λ1, 1/s: rate at which the linear momentum of a body in contact decays, k1 = exp(-λ1 Δt)
+  /// (\alg{A.2 L4}). 3/s takes off 5 % per 60 Hz step: friction-like sliding that stops a
+  /// 1 m/s slide in about a second, slow enough not to look glued.
+  double linearRate = 3.0;
+  /// λ2, 1/s: the same for angular momentum, k2 (\alg{A.2 L5}).
+  double angularRate = 3.0;
+  /// Degrees: a box counts as y-axis aligned (a face perpendicular to gravity, \thesis{§5.3})
+  /// when one of its axes is within this angle of y (\alg{A.2 L3}). 3° is below what the eye
+  /// reads as tilted for a box at rest.
+  double alignedAngleDeg = 3.0;
+  /// ε3, g Δt: an aligned body whose vertical velocity is below this loses it (\alg{A.2 L7-L8}).
+  /// 2 g Δt: a resting box's chatter is about one g Δt.
+  double verticalVelocityEps = 2.0;
+  /// λ3, 1/s: the angular momentum of such a body then decays at this rate (k3, \alg{A.2 L9}):
+  /// 20/s, a tenth of a second to stop rocking.
+  double alignedAngularRate = 20.0;
+  /// ε4, degrees per second: tiltTowardsYAxis turns an aligned body towards exact alignment by
+  /// at most this rate (\alg{A.2 L10}); 10°/s closes a 3° tilt in 0.3 s, too slowly to see.
+  double tiltRateDegPerS = 10.0;
+  /// ε5, g Δt: a linear velocity component below this is scaled by k5 (\alg{A.2 L12-L13}).
+  double linearSmallEps = 1.0;
+  /// k5, unitless: 0.5.
+  double linearSmallFactor = 0.5;
+  /// ε6, g Δt: a component still below this is zeroed (\alg{A.2 L14-L15}).
+  double linearZeroEps = 0.1;
+  /// ε7, g Δt / ℓ: an angular velocity component below this is scaled by k7 (\alg{A.2 L16-L17}).
+  double angularSmallEps = 1.0;
+  /// k7, unitless: 0.5.
+  double angularSmallFactor = 0.5;
+  /// ε8, g Δt / ℓ: a component still below this is zeroed (\alg{A.2 L18-L19}).
+  double angularZeroEps = 0.1;
+  /// ε9, g Δt / ℓ: a small non-negative spin about y is zeroed (\alg{A.2 L20-L21}).
+  double spinZeroEps = 1.0;
+  /// ε10, in units of g Δt²: a body that would move less than this in the step stays where it
+  /// was (\alg{A.2 L26-L28}). 0.5 g Δt², half of what one step of gravity moves it.
+  double positionSnapEps = 0.5;
+  /// ε11, unitless quaternion distance per (g Δt² / ℓ): the same for rotation.
+  double rotationSnapEps = 0.5;
+};
+
+/// FIXCONTACTCONSTRAINTS (\thesis{§4.4}, \alg{A.2}).
+struct FixContactParams {
+  /// ε1, in units of ℓ: the upward nudge per iteration (\alg{A.2 L7}). 2e-4 ℓ.
+  double nudge = 2e-4;
+  /// Documented slop, in units of ℓ: a pair counts as intersecting while its penetration
+  /// exceeds this (\alg{A.2 L6}). 1e-3 ℓ: 1 mm for unit boxes.
+  double slop = 1e-3;
+  /// Most nudges per contact, a guard against a contact that cannot be fixed upwards.
+  int maxNudges = 500;
+};
+
+}  // namespace boxsim

@@ -1,0 +1,99 @@
+/// \file
+/// COLLIDE and the predict–gather–collide–revert pass of \alg{A.2}.
+#include "boxsim/impulse_damped/impulse_pass.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "boxsim/collision/broad_phase.hpp"
+#include "boxsim/core/newtonian_impulse.hpp"
+
+namespace boxsim {
+
+namespace {
+void addVelocity(RigidBody& body, const Vec3& deltaV) {
+  if (body.immovable) return;
+  body.s.P += body.mass * deltaV;
+  body.updateDerived();
+}
+}  // namespace
+
+double collide(World& world, const ImpulseContact& contact, double restitution, GravityMode gravity,
+               double dt, const std::vector<char>& stable) {
+  RigidBody& a = world.bodies[contact.a];
+  RigidBody& b = world.bodies[contact.b];
+  // A.2 L1-L6: the gravity trick, so a resting contact sees the velocity gravity is about to add.
+  const Vec3 deltaV = gravity == GravityMode::VelocityPlusGravity ? Vec3(dt * world.gravity)
+                                                                  : Vec3(Vec3::Zero());
+  addVelocity(a, deltaV);
+  addVelocity(b, deltaV);
+  // A.2 L7-L8: one contact point per collision, the Newtonian impulse there.
+  const double j = applyNewtonianImpulse(a, b, contact.point, contact.normal, restitution);
+  // A.2 L9-L10.
+  addVelocity(a, -deltaV);
+  addVelocity(b, -deltaV);
+  // A.2 L11-L14: a geometrically stable body neither rises nor tips.
+  for (RigidBody* body : {&a, &b}) {
+    const int index = body == &a ? contact.a : contact.b;
+    if (stable.empty() || !stable[index] || body->immovable) continue;
+    body->s.P.y() = 0.0;
+    body->s.L.x() = 0.0;
+    body->s.L.z() = 0.0;
+    body->updateDerived();
+  }
+  return j;
+}
+
+SavedPoses predictPositions(World& world, double dt, const Vec3& extraVelocity) {
+  SavedPoses saved;
+  saved.reserve(world.bodies.size());
+  for (RigidBody& body : world.bodies) {
+    saved.emplace_back(body.s.x, body.s.q);
+    if (body.immovable) continue;
+    body.s.x += dt * (body.v + extraVelocity);
+    const Quat w(0.0, body.omega.x(), body.omega.y(), body.omega.z());
+    body.s.q.coeffs() += (0.5 * dt) * (w * body.s.q).coeffs();
+    body.s.q.normalize();
+    body.updateDerived();
+  }
+  return saved;
+}
+
+void revertPositions(World& world, const SavedPoses& saved) {
+  for (std::size_t i = 0; i < world.bodies.size(); ++i) {
+    world.bodies[i].s.x = saved[i].first;
+    world.bodies[i].s.q = saved[i].second;
+    world.bodies[i].updateDerived();
+  }
+}
+
+PassResult impulsePass(World& world, double dt, double restitution, GravityMode predict,
+                       GravityMode impulseGravity, double margin, ContactNormalTracker& normals,
+                       const std::vector<char>& stable, std::vector<char>* touched) {
+  // L2: integrateObjectPositions, remembering where every body was.
+  const Vec3 gravityStep = predict == GravityMode::VelocityPlusGravity ? Vec3(dt * world.gravity)
+                                                                       : Vec3(Vec3::Zero());
+  const SavedPoses original = predictPositions(world, dt, gravityStep);
+  // L3: gatherCollisions.
+  const std::vector<ImpulseContact> contacts = normals.contactsOf(world, findContacts(world, margin));
+  // L4-L5: collide every pair.
+  PassResult result;
+  result.contacts = static_cast<int>(contacts.size());
+  for (const ImpulseContact& c : contacts) {
+    if (touched) (*touched)[c.a] = (*touched)[c.b] = 1;
+    if (collide(world, c, restitution, impulseGravity, dt, stable) > 0.0) ++result.impulses;
+  }
+  // L6: revertToOriginalPositions; the momenta the impulses changed stay.
+  revertPositions(world, original);
+  return result;
+}
+
+double smallestHalfExtent(const World& world) {
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const RigidBody& b : world.bodies)
+    if (!b.immovable) smallest = std::min(smallest, b.halfExtents.minCoeff());
+  return std::isfinite(smallest) ? smallest : 1.0;
+}
+
+}  // namespace boxsim

@@ -1,0 +1,60 @@
+/// \file
+/// The building blocks both impulse-based techniques share: COLLIDE (\alg{A.2}) and one pass of
+/// RESOLVECOLLISIONS / RESOLVECONTACTS (\alg{A.2}): move every body to its predicted position,
+/// gather the pairs that touch there, collide each, and put the positions back, keeping the
+/// changed momenta (Guendelman et al. 2003, §7).
+#pragma once
+
+#include <utility>
+#include <vector>
+
+#include "boxsim/core/world.hpp"
+#include "boxsim/impulse_damped/contact_normal.hpp"
+
+namespace boxsim {
+
+/// Whether a velocity includes the gravity of the coming step (\alg{A.2} COLLIDE's argument).
+enum class GravityMode {
+  VelocityNoGravity,    ///< v as it is
+  VelocityPlusGravity,  ///< v + g Δt: what the body will have once gravity is integrated
+};
+
+/// COLLIDE(collision, restitution, gravity) of \alg{A.2}: with VelocityPlusGravity both bodies'
+/// velocities get g Δt added for the impulse and taken off after (L1-L6, L9-L10); the Newtonian
+/// impulse with `restitution` acts at the contact point along its normal (L7-L8); then a
+/// geometrically stable body loses its vertical momentum and its tipping angular momentum
+/// (L11-L14). `stable` is empty or has one flag per body.
+/// \return the impulse magnitude applied, N s (0 when the bodies separate at the point).
+double collide(World& world, const ImpulseContact& contact, double restitution, GravityMode gravity,
+               double dt, const std::vector<char>& stable);
+
+/// Positions and orientations of every body, for putting them back (\alg{A.2}
+/// revertToOriginalPositions).
+using SavedPoses = std::vector<std::pair<Vec3, Quat>>;
+
+/// integrateObjectPositions of \alg{A.2}: moves every movable body to x + Δt (v + extra) and
+/// turns it by Δt ω (one explicit quaternion step, renormalised); returns the poses before.
+SavedPoses predictPositions(World& world, double dt, const Vec3& extraVelocity);
+
+/// Puts back poses saved by predictPositions; momenta are left as they are.
+void revertPositions(World& world, const SavedPoses& saved);
+
+/// What one pass found.
+struct PassResult {
+  int contacts = 0;  ///< pairs touching at the predicted positions
+  int impulses = 0;  ///< impulses applied
+};
+
+/// One pass of RESOLVECOLLISIONS / RESOLVECONTACTS (\alg{A.2} L2-L6 of either):
+/// integrateObjectPositions (x += Δt v', q += Δt ½ ω q with v' = v + g Δt under
+/// `predict` = VelocityPlusGravity), gatherCollisions (every pair closer than `margin` m), COLLIDE
+/// each with `restitution` and `impulseGravity`, revertToOriginalPositions. Bodies marked in
+/// `touched` (one flag per body, or empty) get their flag set when they take part in a contact.
+PassResult impulsePass(World& world, double dt, double restitution, GravityMode predict,
+                       GravityMode impulseGravity, double margin, ContactNormalTracker& normals,
+                       const std::vector<char>& stable, std::vector<char>* touched = nullptr);
+
+/// The smallest half extent of the movable bodies, m: the length ℓ the parameters scale with.
+double smallestHalfExtent(const World& world);
+
+}  // namespace boxsim
