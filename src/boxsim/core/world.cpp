@@ -18,6 +18,33 @@ int World::addGround(double topY, double halfSize, double halfThickness) {
   return groundIndex;
 }
 
+int World::addLaunched(const RigidBody& body, const std::string& name, double time) {
+  RigidBody waiting = RigidBody::immovableBox(body.halfExtents);
+  waiting.s.x = body.s.x;
+  waiting.s.q = body.s.q;
+  const int index = add(waiting, name);
+  launches.push_back({index, time, body.mass, body.v, body.omega, false});
+  return index;
+}
+
+int World::applyLaunches(double t) {
+  int launched = 0;
+  for (Launch& l : launches) {
+    if (l.done || l.time > t) continue;
+    const BodyState pose = bodies[l.body].s;
+    RigidBody body = RigidBody::box(bodies[l.body].halfExtents, l.mass);
+    body.s.x = pose.x;
+    body.s.q = pose.q;
+    body.updateDerived();
+    body.setVelocity(l.velocity);
+    body.setAngularVelocity(l.angularVelocity);
+    bodies[l.body] = body;
+    l.done = true;
+    ++launched;
+  }
+  return launched;
+}
+
 WorldState World::saveState() const {
   WorldState state;
   state.bodies.reserve(bodies.size());

@@ -18,6 +18,17 @@ struct WorldState {
   bool operator==(const WorldState& o) const { return bodies == o.bodies; }
 };
 
+/// A body that enters the simulation at a given time, as the projectile shot into the pyramid
+/// of \thesis{Fig. 6.6}: until then it waits, immovable, at its launch pose.
+struct Launch {
+  int body = -1;                        ///< index of the body
+  double time = 0.0;                    ///< s
+  double mass = 1.0;                    ///< kg, restored at launch
+  Vec3 velocity = Vec3::Zero();         ///< m/s at launch
+  Vec3 angularVelocity = Vec3::Zero();  ///< rad/s at launch
+  bool done = false;                    ///< set once launched
+};
+
 /// Bodies, gravity and global material constants. Body indices are stable: a body's index is
 /// its identity everywhere (contacts, recorder columns, output files).
 class World {
@@ -30,11 +41,21 @@ class World {
   /// Index of the ground body, or -1 when the scene has none.
   int groundIndex = -1;
 
+  /// Bodies waiting to be launched, in the order they were added.
+  std::vector<Launch> launches;
+
   /// Adds a body with a name; returns its index.
   int add(const RigidBody& body, const std::string& name);
   /// Adds the ground: an immovable box whose top face is the plane y = topY (m), of the
   /// given horizontal half size (m) and thickness (m). Returns its index.
   int addGround(double topY = 0.0, double halfSize = 50.0, double halfThickness = 0.5);
+
+  /// Adds a movable box that waits, immovable, at its pose until `time` (s), then moves with
+  /// the given velocities. Returns its index.
+  int addLaunched(const RigidBody& body, const std::string& name, double time);
+  /// Launches every waiting body whose time is <= t (s): it gets its mass and inertia back and
+  /// its launch velocities. Returns how many were launched.
+  int applyLaunches(double t);
 
   /// Copies out the state of every body.
   WorldState saveState() const;

@@ -165,7 +165,7 @@ Quat readOrientation(const Node& node) {
 void readBody(const Node& node, Scene& scene, std::set<std::string>& names) {
   node.requireObject("a body");
   node.allowKeys({"name", "half_extents", "mass", "position", "orientation", "velocity",
-                  "angular_velocity", "immovable"});
+                  "angular_velocity", "immovable", "launch_time"});
   if (!node.has("half_extents")) node.fail("missing \"half_extents\"", "add \"half_extents\": [0.5, 0.5, 0.5]");
   const Vec3 halfExtents = node.at("half_extents").positiveVec3("m");
   const bool immovable = node.has("immovable") && node.at("immovable").boolean();
@@ -191,7 +191,12 @@ void readBody(const Node& node, Scene& scene, std::set<std::string>& names) {
   if (!names.insert(name).second)
     (node.has("name") ? node.at("name") : node)
         .fail("the name \"" + name + "\" is already taken", "give each body its own \"name\"");
-  scene.world.add(body, name);
+  if (node.has("launch_time")) {
+    if (immovable) node.at("launch_time").fail("an immovable body cannot be launched", "remove \"launch_time\"");
+    scene.world.addLaunched(body, name, node.at("launch_time").nonNegative("s"));
+  } else {
+    scene.world.add(body, name);
+  }
   scene.origins.push_back(node.path());
 }
 

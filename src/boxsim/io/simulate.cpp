@@ -9,6 +9,9 @@ namespace boxsim {
 std::map<std::string, std::string> runParameters(const Stepper& stepper, const World& world,
                                                  const std::string& scene, double dt,
                                                  double duration) {
+  // The stepper's parameters go in first: map::insert never overwrites, so a key the stepper
+  // sets itself, above all the "seed" of a technique that draws random numbers (§4.2), wins
+  // over the defaults below.
   std::map<std::string, std::string> meta = stepper.parameters();
   meta.insert({{"method", stepper.name()},
                {"scene", scene},
@@ -50,8 +53,11 @@ SimulateSummary simulate(World& world, Stepper& stepper, const SimulateOptions& 
                          Recorder& recorder) {
   const long steps = checkedStepCount(options.dt, options.duration, world.bodies.size());
   SimulateSummary summary;
+  world.applyLaunches(0.0);
   recorder.capture(world, 0.0);
   for (long k = 1; k <= steps; ++k) {
+    // A body launched at time T starts moving with the step that begins at T.
+    world.applyLaunches(static_cast<double>(k - 1) * options.dt + 1e-9 * options.dt);
     const StepStats stats = stepper.step(world, options.dt);
     requireFinite(world, k);
     recorder.capture(world, static_cast<double>(k) * options.dt, stats);

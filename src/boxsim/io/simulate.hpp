@@ -47,6 +47,8 @@ long checkedStepCount(double dt, double duration, std::size_t bodyCount);
 
 /// Records the initial frame, then steps `stepper` round(duration / dt) times, recording a
 /// frame after each (frame k at t = k dt, computed from k so that time does not drift).
+/// Bodies waiting in world.launches are launched at the start of the step that begins at (or
+/// just after) their time.
 /// Throws std::invalid_argument as checkedStepCount() does, and std::runtime_error naming the
 /// step and the body when a body's state stops being finite.
 SimulateSummary simulate(World& world, Stepper& stepper, const SimulateOptions& options,
