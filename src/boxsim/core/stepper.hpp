@@ -16,16 +16,20 @@ struct StepStats {
   int bisections = 0;  ///< bisection steps of time-of-impact searches (each one a roll-back)
   int restarts = 0;    ///< searches restarted on an earlier collision with a third body
   int contacts = 0;    ///< contact manifolds touching at the end of the step
+  /// Bodies asleep at the end of the step (computational stability, \thesis{§4.5}); 0 for
+  /// techniques that do not sleep bodies.
+  int sleeping = 0;
   /// True when the step hit a documented work limit (e.g. the basic colliding technique's
   /// events-per-step bound) and did less than the technique asks for.
   bool limitReached = false;
 
-  /// Accumulates the counts of another step; `contacts` takes the later value.
+  /// Accumulates the counts of another step; `contacts` and `sleeping` take the later value.
   StepStats& operator+=(const StepStats& o) {
     events += o.events;
     bisections += o.bisections;
     restarts += o.restarts;
     contacts = o.contacts;
+    sleeping = o.sleeping;
     limitReached = limitReached || o.limitReached;
     return *this;
   }

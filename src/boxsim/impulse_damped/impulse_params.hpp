@@ -101,4 +101,65 @@ struct FixContactParams {
   int maxNudges = 500;
 };
 
+/// Computational stability (\thesis{§4.5}): bodies that have come to rest sleep, cost nothing,
+/// and act as immovable until something disturbs them. The thesis names the idea and gives no
+/// rule; the rule and every threshold here are ours (damped_integration.hpp states the rule).
+/// Speeds are in units of g Δt, as in DampingParams: a resting contact seen through the gravity
+/// trick of \alg{A.2 L1-L6} approaches at about 1 g Δt, so thresholds a few times that separate
+/// a disturbance from the load of a body at rest.
+struct SleepParams {
+  /// Ablation switch: false keeps every body awake, \alg{A.2} as written.
+  bool enabled = true;
+  /// s: how long a body must have had exactly zero momenta and an unchanged pose before it
+  /// falls asleep; turned into round(t / Δt) steps, at least 1. 0.5 s (30 steps at 60 Hz):
+  /// DAMPENOBJECTS' zeroing and snap (\alg{A.2 L14-L28}) can hold a slowly toppling box still
+  /// for a few steps while gravity builds its velocity up again; half a second of stillness
+  /// is well beyond that, and short enough that a settled pile stops costing almost at once.
+  double timeToSleep = 0.5;
+  /// g Δt: a sleeping body wakes when an awake body comes at it faster than this along the
+  /// contact normal. 4 g Δt (0.65 m/s at 60 Hz, the speed of a drop from 2.2 cm): twice
+  /// DampingParams::verticalVelocityEps, below which damping treats a body as resting, so a box
+  /// settling onto a sleeping pile does not wake it and a real hit does.
+  double wakeSpeed = 4.0;
+  /// g Δt: a sleeping body wakes when the impulse COLLIDE would apply to it (computed as if it
+  /// stayed immovable, an upper bound) would change the velocity of its contact point by more
+  /// than this. 8 g Δt (1.3 m/s at 60 Hz): between equal boxes the restitution 0.9 makes this
+  /// about wakeSpeed again, so the test matters for a heavy body pressing or hitting slowly on
+  /// a light sleeping one, not for the weight of a few boxes at rest (about 1 g Δt each).
+  double wakeImpulse = 8.0;
+  /// Unitless, in (0, 1): a contact supports the upper of its two bodies when its normal,
+  /// pointing from the other body to it, has a y component above this. 0.1 (the normal within
+  /// about 84° of vertical): a box leaning on another counts as resting on it, boxes side by
+  /// side on the ground (normals horizontal up to rounding) do not. Waking spreads along
+  /// support from below, and a body sleeps only on sleeping or immovable supports.
+  double supportNormalY = 0.1;
+};
+
+/// Visual plausibility (\thesis{§4.2}, after Barzel, Hughes and Wood, "Plausible Motion
+/// Simulation for Computer Graphics Animation", 1996): the normal of a high-speed collision is
+/// turned by a small random rotation, so a die landing on its side does not bounce straight
+/// up. Low-speed collisions and contacts are never perturbed: there the aim is to come to rest
+/// (\thesis{§4.2}).
+struct PlausibilityParams {
+  /// Off by default: the thesis' scenes and every test reproduce without randomness, and a
+  /// run with perturbation is an explicit choice. The seed is written into output headers
+  /// either way.
+  bool enabled = false;
+  /// Seed of the stepper's gsl_rng_mt19937 generator. The same seed gives bit-identical runs.
+  /// GSL maps seed 0 to the generator's default seed 4357, so 0 and 4357 give the same stream.
+  /// 1: a fixed default, so a run that turns perturbation on without a seed is reproducible.
+  unsigned long seed = 1;
+  /// m/s: only collisions whose bodies approach faster than this along the normal are
+  /// perturbed. 2 m/s, the impact speed of a drop from 20 cm (v²/2g): a bounce the eye clearly
+  /// sees, and 12 g Δt at 60 Hz, far above resting chatter (about 1 g Δt), the damping
+  /// thresholds (at most 2 g Δt) and SleepParams::wakeSpeed, so a settling body is never
+  /// kicked by it. In m/s rather than g Δt because it is a visual threshold, not a numerical
+  /// one: it must not move when the step changes.
+  double speedThreshold = 2.0;
+  /// Degrees: the largest angle by which a normal is turned; directions are uniform over the
+  /// spherical cap of this half-angle. 5°: enough that bounces visibly vary, small enough that
+  /// a perturbed impulse stays within a few percent of the unperturbed one (cos 5° = 0.996).
+  double maxAngleDeg = 5.0;
+};
+
 }  // namespace boxsim

@@ -45,6 +45,29 @@ double collide(World& world, const ImpulseContact& contact, double restitution, 
   return j;
 }
 
+double approachSpeed(const World& world, const ImpulseContact& contact, GravityMode gravity,
+                     double dt) {
+  const RigidBody& a = world.bodies[contact.a];
+  const RigidBody& b = world.bodies[contact.b];
+  // A.2 L1-L6: g Δt is added to movable bodies only, so it cancels between two movable ones.
+  const Vec3 deltaV = gravity == GravityMode::VelocityPlusGravity ? Vec3(dt * world.gravity)
+                                                                  : Vec3(Vec3::Zero());
+  const Vec3 va = a.pointVelocity(contact.point) + (a.immovable ? Vec3(Vec3::Zero()) : deltaV);
+  const Vec3 vb = b.pointVelocity(contact.point) + (b.immovable ? Vec3(Vec3::Zero()) : deltaV);
+  return -contact.normal.dot(vb - va);
+}
+
+double collideImpulse(const World& world, const ImpulseContact& contact, double restitution,
+                      GravityMode gravity, double dt) {
+  RigidBody a = world.bodies[contact.a];
+  RigidBody b = world.bodies[contact.b];
+  const Vec3 deltaV = gravity == GravityMode::VelocityPlusGravity ? Vec3(dt * world.gravity)
+                                                                  : Vec3(Vec3::Zero());
+  addVelocity(a, deltaV);
+  addVelocity(b, deltaV);
+  return applyNewtonianImpulse(a, b, contact.point, contact.normal, restitution);
+}
+
 SavedPoses predictPositions(World& world, double dt, const Vec3& extraVelocity) {
   SavedPoses saved;
   saved.reserve(world.bodies.size());
@@ -62,6 +85,9 @@ SavedPoses predictPositions(World& world, double dt, const Vec3& extraVelocity) 
 
 void revertPositions(World& world, const SavedPoses& saved) {
   for (std::size_t i = 0; i < world.bodies.size(); ++i) {
+    // predictPositions leaves immovable bodies where they are; with many sleeping bodies
+    // standing in as immovable (§4.5), recomputing their derived values was most of the work.
+    if (world.bodies[i].immovable) continue;
     world.bodies[i].s.x = saved[i].first;
     world.bodies[i].s.q = saved[i].second;
     world.bodies[i].updateDerived();
@@ -70,17 +96,20 @@ void revertPositions(World& world, const SavedPoses& saved) {
 
 PassResult impulsePass(World& world, double dt, double restitution, GravityMode predict,
                        GravityMode impulseGravity, double margin, ContactNormalTracker& normals,
-                       const std::vector<char>& stable, std::vector<char>* touched) {
+                       const std::vector<char>& stable, std::vector<char>* touched,
+                       const BeforeCollide& beforeCollide) {
   // L2: integrateObjectPositions, remembering where every body was.
   const Vec3 gravityStep = predict == GravityMode::VelocityPlusGravity ? Vec3(dt * world.gravity)
                                                                        : Vec3(Vec3::Zero());
   const SavedPoses original = predictPositions(world, dt, gravityStep);
   // L3: gatherCollisions.
-  const std::vector<ImpulseContact> contacts = normals.contactsOf(world, findContacts(world, margin));
+  std::vector<ImpulseContact> contacts = normals.contactsOf(world, findContacts(world, margin));
   // L4-L5: collide every pair.
   PassResult result;
   result.contacts = static_cast<int>(contacts.size());
-  for (const ImpulseContact& c : contacts) {
+  const CollideCall call{restitution, impulseGravity, dt};
+  for (ImpulseContact& c : contacts) {
+    if (beforeCollide) beforeCollide(world, c, call);
     if (touched) (*touched)[c.a] = (*touched)[c.b] = 1;
     if (collide(world, c, restitution, impulseGravity, dt, stable) > 0.0) ++result.impulses;
   }

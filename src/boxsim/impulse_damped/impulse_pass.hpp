@@ -5,6 +5,7 @@
 /// changed momenta (Guendelman et al. 2003, §7).
 #pragma once
 
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -28,6 +29,30 @@ enum class GravityMode {
 double collide(World& world, const ImpulseContact& contact, double restitution, GravityMode gravity,
                double dt, const std::vector<char>& stable);
 
+/// The relative normal speed at which the bodies of `contact` approach as COLLIDE with
+/// `gravity` sees it (\alg{A.2} COLLIDE L1-L6: under VelocityPlusGravity each movable body's
+/// velocity includes the g Δt of the coming step, dt in s), m/s; positive when they approach.
+double approachSpeed(const World& world, const ImpulseContact& contact, GravityMode gravity,
+                     double dt);
+
+/// The magnitude of the Newtonian impulse COLLIDE(contact, restitution, gravity) would apply
+/// (\alg{A.2} COLLIDE L1-L8), N s, computed on copies of the two bodies: the world is not
+/// changed. Zero when the bodies separate at the point.
+double collideImpulse(const World& world, const ImpulseContact& contact, double restitution,
+                      GravityMode gravity, double dt);
+
+/// The arguments of the COLLIDE call a pass is about to make, as a BeforeCollide hook sees them.
+struct CollideCall {
+  double restitution = 0.0;                              ///< unitless, COLLIDE's restitution
+  GravityMode gravity = GravityMode::VelocityNoGravity;  ///< COLLIDE's gravity argument
+  double dt = 0.0;                                       ///< the step, s
+};
+
+/// Called by impulsePass for each contact just before COLLIDE. It may change the contact (turn
+/// its normal: visual plausibility, \thesis{§4.2}) and the mass properties of its bodies (wake
+/// a sleeping body, \thesis{§4.5}); it must not move bodies or change their momenta.
+using BeforeCollide = std::function<void(World&, ImpulseContact&, const CollideCall&)>;
+
 /// Positions and orientations of every body, for putting them back (\alg{A.2}
 /// revertToOriginalPositions).
 using SavedPoses = std::vector<std::pair<Vec3, Quat>>;
@@ -36,7 +61,8 @@ using SavedPoses = std::vector<std::pair<Vec3, Quat>>;
 /// turns it by Δt ω (one explicit quaternion step, renormalised); returns the poses before.
 SavedPoses predictPositions(World& world, double dt, const Vec3& extraVelocity);
 
-/// Puts back poses saved by predictPositions; momenta are left as they are.
+/// Puts back poses saved by predictPositions; momenta are left as they are. Immovable bodies,
+/// which predictPositions does not move, are skipped.
 void revertPositions(World& world, const SavedPoses& saved);
 
 /// What one pass found.
@@ -50,9 +76,11 @@ struct PassResult {
 /// `predict` = VelocityPlusGravity), gatherCollisions (every pair closer than `margin` m), COLLIDE
 /// each with `restitution` and `impulseGravity`, revertToOriginalPositions. Bodies marked in
 /// `touched` (one flag per body, or empty) get their flag set when they take part in a contact.
+/// `beforeCollide`, when set, sees each contact just before its COLLIDE.
 PassResult impulsePass(World& world, double dt, double restitution, GravityMode predict,
                        GravityMode impulseGravity, double margin, ContactNormalTracker& normals,
-                       const std::vector<char>& stable, std::vector<char>* touched = nullptr);
+                       const std::vector<char>& stable, std::vector<char>* touched = nullptr,
+                       const BeforeCollide& beforeCollide = {});
 
 /// The smallest half extent of the movable bodies, m: the length ℓ the parameters scale with.
 double smallestHalfExtent(const World& world);
