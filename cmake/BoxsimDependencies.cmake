@@ -3,7 +3,7 @@
 include_guard(GLOBAL)
 
 set(BOXSIM_APT_PACKAGES
-    "cmake g++ make libeigen3-dev libgsl-dev catch2 nlohmann-json3-dev libcli11-dev gnuplot-nox doxygen graphviz libjs-mathjax")
+    "cmake g++ make libeigen3-dev libgsl-dev catch2 nlohmann-json3-dev libcli11-dev gnuplot-nox doxygen graphviz libjs-mathjax libbenchmark-dev")
 
 macro(boxsim_require_package name debian_package)
   find_package(${name} ${ARGN} QUIET)
@@ -37,4 +37,15 @@ if(BOXSIM_BUILD_FIGURES)
 endif()
 if(BOXSIM_BUILD_DOCS)
   boxsim_require_program(DOXYGEN_EXECUTABLE doxygen doxygen)
+endif()
+
+# Google Benchmark is optional: without it there is no 'bench' target and nothing else changes.
+if(BOXSIM_BUILD_BENCH)
+  find_package(benchmark QUIET)
+  if(NOT benchmark_FOUND)
+    message(STATUS
+      "boxsim: Google Benchmark not found, so no 'bench' target. "
+      "Install it with:  apt-get install -y libbenchmark-dev")
+    set(BOXSIM_BUILD_BENCH OFF)
+  endif()
 endif()
