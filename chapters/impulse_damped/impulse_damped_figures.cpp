@@ -73,7 +73,9 @@ Run runScene(const std::string& sceneDir, const std::string& scene, const std::s
 }
 
 std::string header(const std::string& title, const std::string& columns) {
-  return "# " + title + "\n# dt: 1/60 s; scenes: chapters/impulse_damped/scenes/\n# seed: 0\n# columns: " +
+  return "# " + title +
+         "\n# dt: 1/60 s; scenes: chapters/impulse_damped/scenes/\n# seed: 1 (the damped "
+         "stepper's default; visual plausibility is off, so no random number is drawn)\n# columns: " +
          columns + "\n";
 }
 
