@@ -95,12 +95,16 @@ DampingStats dampenObjects(World& world, double dt, const std::vector<char>& tou
   // A.2 L22: integrateObjectPositions with the velocities as they now are.
   const SavedPoses old = predictPositions(world, dt, Vec3::Zero());
   // A.2 L23-L28: a body that would move less than ε10 and turn less than ε11 stays put.
-  // DEVIATION(A.2 L23): only bodies that had a contact interaction are snapped; a body in free
-  // flight at the top of its arc moves little in one step too, and must not hang there.
+  // DEVIATION(A.2 L23): only bodies that had a contact interaction and lie with a face
+  // perpendicular to gravity (§5.3's third mark of a chattering body) are snapped. A body in
+  // free flight at the top of its arc moves little in one step too and must not hang there,
+  // and a box just starting to tip off an edge moves little too: snapping it holds its pose,
+  // the same contacts give it the same momenta, and it stays balanced on the edge for ever
+  // (seen with 0.1 m cubes).
   const double step2 = world.gravity.norm() * dt * dt;  // the length unit g Δt²
   for (std::size_t i = 0; i < world.bodies.size(); ++i) {
     RigidBody& o = world.bodies[i];
-    if (o.immovable || !touched[i]) continue;
+    if (o.immovable || !touched[i] || !isYAxisAligned(o, params.alignedAngleDeg)) continue;
     const double ell = o.halfExtents.minCoeff();
     const double deltaPosition = (o.s.x - old[i].first).norm();
     const double deltaRotation = quaternionDistance(o.s.q, old[i].second);

@@ -34,7 +34,8 @@ void dampMomenta(World& world, double dt, const std::vector<char>& touched,
                  const DampingParams& params, DampingStats* stats = nullptr);
 
 /// The whole of DAMPENOBJECTS (\alg{A.2 L1-L28}): dampMomenta, then integrateObjectPositions
-/// with the current velocities (L22), then the snap of L23-L28.
+/// with the current velocities (L22), then the snap of L23-L28 for bodies in contact that lie
+/// with a face perpendicular to gravity.
 DampingStats dampenObjects(World& world, double dt, const std::vector<char>& touched,
                            const DampingParams& params);
 
