@@ -47,14 +47,6 @@ int restStep(World& world, Stepper& stepper, int steps) {
   return since;
 }
 
-/// Deepest penetration between any two bodies, m.
-double deepestPenetration(const World& world) {
-  double deepest = 0.0;
-  for (const auto& [i, j] : candidatePairs(world))
-    deepest = std::max(deepest, separatingAxisTest(Obb::of(world.bodies[i]), Obb::of(world.bodies[j])).depth);
-  return deepest;
-}
-
 }  // namespace
 
 TEST_CASE("Damped integration brings the dropped die to rest with momenta exactly zero",

@@ -171,14 +171,6 @@ void figS6_1MsPerFrame(const std::vector<Run>& runs, const std::string& dir) {
   writeFileAtomically(dir + "/s6_1_ms_per_frame.dat", out);
 }
 
-/// Deepest overlap of any pair of bodies, m.
-double deepestPenetration(const World& world) {
-  double deepest = 0.0;
-  for (const auto& [i, j] : candidatePairs(world))
-    deepest = std::max(deepest, separatingAxisTest(Obb::of(world.bodies[i]), Obb::of(world.bodies[j])).depth);
-  return deepest;
-}
-
 /// The three contact normal models of §3.3.2 compared: for each, under the plain impulse step
 /// and under damped integration, the base-10 pyramid before the shot (0-5 s: chatter, apex
 /// sag, deepest penetration) and the die (time from which its momenta stay exactly zero).

@@ -83,4 +83,12 @@ std::pair<int, int> firstIntersectingPair(const World& world, double tolerance,
   return {-1, -1};
 }
 
+double deepestPenetration(const World& world) {
+  double deepest = 0.0;
+  for (const std::pair<int, int>& p : candidatePairs(world))
+    deepest = std::max(deepest, separatingAxisTest(Obb::of(world.bodies[p.first]),
+                                                   Obb::of(world.bodies[p.second])).depth);
+  return deepest;
+}
+
 }  // namespace boxsim

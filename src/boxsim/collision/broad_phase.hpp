@@ -60,6 +60,10 @@ std::vector<std::pair<int, int>> candidatePairs(const World& world, double margi
 std::vector<ContactManifold> findContacts(const World& world, double margin = 0.0,
                                           BroadPhase kind = BroadPhase::SweepAndPrune);
 
+/// The deepest overlap of any pair of bodies (separating-axis depth), m; 0 when none overlaps.
+/// A measure for tests and figures (how far a technique lets boxes interpenetrate).
+double deepestPenetration(const World& world);
+
 /// True when bodies i and j overlap with a separating-axis depth above `tolerance` (m).
 bool pairIntersects(const World& world, int i, int j, double tolerance);
 
