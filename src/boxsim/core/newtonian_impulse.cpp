@@ -22,12 +22,12 @@ double applyNewtonianImpulse(RigidBody& a, RigidBody& b, const Vec3& p, const Ve
   if (!a.immovable) {
     a.s.P -= impulse;
     a.s.L -= ra.cross(impulse);
-    a.updateDerived();
+    a.updateVelocities();
   }
   if (!b.immovable) {
     b.s.P += impulse;
     b.s.L += rb.cross(impulse);
-    b.updateDerived();
+    b.updateVelocities();
   }
   return j;
 }

@@ -47,8 +47,7 @@ RigidBody RigidBody::immovableBox(const Vec3& halfExtents) {
 void RigidBody::updateDerived() {
   R = s.q.toRotationMatrix();
   Iinv = R * IbodyInvDiag.asDiagonal() * R.transpose();
-  v = invMass * s.P;
-  omega = Iinv * s.L;
+  updateVelocities();
 }
 
 void RigidBody::setVelocity(const Vec3& velocity) {

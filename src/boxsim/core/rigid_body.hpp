@@ -53,8 +53,15 @@ class RigidBody {
   Mat3 R = Mat3::Identity();  ///< rotation matrix of q; its columns are the box axes
   Mat3 Iinv = Mat3::Zero();   ///< world inverse inertia R Ibody⁻¹ Rᵀ, 1/(kg m^2)
 
-  /// Recomputes v, ω, R and Iinv from the state. Call after every change of s.
+  /// Recomputes v, ω, R and Iinv from the state. Call after every change of s.q.
   void updateDerived();
+  /// Recomputes only v and ω, for a change of P or L alone (R and Iinv depend on q only);
+  /// bit-identical to updateDerived() in that case, and cheaper. A change of x alone needs
+  /// neither.
+  void updateVelocities() {
+    v = invMass * s.P;
+    omega = Iinv * s.L;
+  }
   /// Sets P from a velocity (m/s) and updates derived quantities. No effect if immovable.
   void setVelocity(const Vec3& velocity);
   /// Sets L from an angular velocity (rad/s) and updates derived quantities.

@@ -333,7 +333,7 @@ StepStats DampedIntegrationStepper::step(World& world, double dt) {
   for (RigidBody& body : world.bodies)
     if (!body.immovable) {
       body.s.P += dt * body.mass * world.gravity;
-      body.updateDerived();
+      body.updateVelocities();
     }
   // L4: DAMPENOBJECTS (its L22 integrates the positions).
   if (params_.damp) {

@@ -74,7 +74,7 @@ void dampMomenta(World& world, double dt, const std::vector<char>& touched,
     }
     // A.2 L20-L21: a small spin about y is stopped only when it is non-negative, as written.
     if (std::abs(o.s.L.y()) < params.spinZeroEps * lUnit && o.s.L.y() >= 0.0) o.s.L.y() = 0.0;
-    o.updateDerived();
+    o.updateVelocities();  // R is current: tiltTowardsYAxis updates it when it turns the body
     // DEVIATION(A.2 L10, L16-L21): the rotational energy ½ Lᵀ R I⁻¹ Rᵀ L is not diagonal in
     // the world components of L, so scaling or zeroing one of them, or turning the box with L
     // held (tiltTowardsYAxis), can raise it. §5.3's rule is that damping never adds energy:
@@ -82,7 +82,7 @@ void dampMomenta(World& world, double dt, const std::vector<char>& touched,
     const double rotationalAfter = o.s.L.dot(o.omega);
     if (rotationalAfter > rotationalBefore) {
       o.s.L *= std::sqrt(rotationalBefore / rotationalAfter);
-      o.updateDerived();
+      o.updateVelocities();
     }
     if (stats) ++stats->damped;
   }
@@ -106,13 +106,11 @@ DampingStats dampenObjects(World& world, double dt, const std::vector<char>& tou
     RigidBody& o = world.bodies[i];
     if (o.immovable || !touched[i] || !isYAxisAligned(o, params.alignedAngleDeg)) continue;
     const double ell = o.halfExtents.minCoeff();
-    const double deltaPosition = (o.s.x - old[i].first).norm();
-    const double deltaRotation = quaternionDistance(o.s.q, old[i].second);
+    const double deltaPosition = (o.s.x - old[i].x).norm();
+    const double deltaRotation = quaternionDistance(o.s.q, old[i].q);
     if (deltaPosition < params.positionSnapEps * step2 &&
         deltaRotation < params.rotationSnapEps * step2 / ell) {
-      o.s.x = old[i].first;
-      o.s.q = old[i].second;
-      o.updateDerived();
+      restorePose(o, old[i]);
       ++stats.snapped;
     }
   }

@@ -31,8 +31,7 @@ int fixContactConstraints(World& world, double margin, const FixContactParams& p
     // A.2 L6-L7: nudge while they still intersect (beyond the documented slop).
     for (int n = 0; n < params.maxNudges; ++n) {
       if (separatingAxisTest(Obb::of(moving), stable).depth <= params.slop * ell) break;
-      moving.s.x += params.nudge * ell * offset;
-      moving.updateDerived();
+      moving.s.x += params.nudge * ell * offset;  // x alone: nothing derived changes
       ++nudges;
     }
   }

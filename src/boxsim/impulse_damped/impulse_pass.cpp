@@ -15,7 +15,7 @@ namespace {
 void addVelocity(RigidBody& body, const Vec3& deltaV) {
   if (body.immovable) return;
   body.s.P += body.mass * deltaV;
-  body.updateDerived();
+  body.updateVelocities();
 }
 }  // namespace
 
@@ -40,7 +40,7 @@ double collide(World& world, const ImpulseContact& contact, double restitution, 
     body->s.P.y() = 0.0;
     body->s.L.x() = 0.0;
     body->s.L.z() = 0.0;
-    body->updateDerived();
+    body->updateVelocities();
   }
   return j;
 }
@@ -72,7 +72,7 @@ SavedPoses predictPositions(World& world, double dt, const Vec3& extraVelocity) 
   SavedPoses saved;
   saved.reserve(world.bodies.size());
   for (RigidBody& body : world.bodies) {
-    saved.emplace_back(body.s.x, body.s.q);
+    saved.push_back({body.s.x, body.s.q, body.R, body.Iinv, body.immovable});
     if (body.immovable) continue;
     body.s.x += dt * (body.v + extraVelocity);
     const Quat w(0.0, body.omega.x(), body.omega.y(), body.omega.z());
@@ -83,14 +83,24 @@ SavedPoses predictPositions(World& world, double dt, const Vec3& extraVelocity) 
   return saved;
 }
 
+void restorePose(RigidBody& body, const SavedPose& pose) {
+  body.s.x = pose.x;
+  body.s.q = pose.q;
+  if (pose.immovable != body.immovable) {
+    body.updateDerived();
+    return;
+  }
+  body.R = pose.R;
+  body.Iinv = pose.Iinv;
+  body.updateVelocities();  // P and L may have changed while the body stood elsewhere
+}
+
 void revertPositions(World& world, const SavedPoses& saved) {
   for (std::size_t i = 0; i < world.bodies.size(); ++i) {
     // predictPositions leaves immovable bodies where they are; with many sleeping bodies
     // standing in as immovable (§4.5), recomputing their derived values was most of the work.
     if (world.bodies[i].immovable) continue;
-    world.bodies[i].s.x = saved[i].first;
-    world.bodies[i].s.q = saved[i].second;
-    world.bodies[i].updateDerived();
+    restorePose(world.bodies[i], saved[i]);
   }
 }
 

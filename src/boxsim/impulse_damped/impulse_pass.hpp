@@ -53,13 +53,29 @@ struct CollideCall {
 /// a sleeping body, \thesis{§4.5}); it must not move bodies or change their momenta.
 using BeforeCollide = std::function<void(World&, ImpulseContact&, const CollideCall&)>;
 
-/// Positions and orientations of every body, for putting them back (\alg{A.2}
+/// The pose of one body with the derived values that depend on it only, so putting it back
+/// needs no recomputation of R and Iinv.
+struct SavedPose {
+  Vec3 x;     ///< m
+  Quat q;     ///< orientation
+  Mat3 R;     ///< rotation matrix of q
+  Mat3 Iinv;  ///< world inverse inertia at q
+  /// Whether the body was immovable when saved: a sleeping body woken in between (§4.5) has
+  /// other mass properties now, so its derived values must be recomputed, not restored.
+  bool immovable;
+};
+
+/// Poses of every body, in body order, for putting them back (\alg{A.2}
 /// revertToOriginalPositions).
-using SavedPoses = std::vector<std::pair<Vec3, Quat>>;
+using SavedPoses = std::vector<SavedPose>;
 
 /// integrateObjectPositions of \alg{A.2}: moves every movable body to x + Δt (v + extra) and
 /// turns it by Δt ω (one explicit quaternion step, renormalised); returns the poses before.
 SavedPoses predictPositions(World& world, double dt, const Vec3& extraVelocity);
+
+/// Puts one body back to a saved pose, reusing the saved R and Iinv unless the body's
+/// mobility changed since (then everything derived is recomputed); v and ω are recomputed.
+void restorePose(RigidBody& body, const SavedPose& pose);
 
 /// Puts back poses saved by predictPositions; momenta are left as they are. Immovable bodies,
 /// which predictPositions does not move, are skipped.

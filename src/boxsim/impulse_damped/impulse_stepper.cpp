@@ -36,7 +36,7 @@ StepStats ImpulseStepper::step(World& world, double dt) {
   for (RigidBody& body : world.bodies)
     if (!body.immovable) {
       body.s.P += dt * body.mass * world.gravity;
-      body.updateDerived();
+      body.updateVelocities();
     }
   // 3. Contacts, restitution ramping from -1 (no impulse) to 0 (inelastic), A.2 L5.
   const int n = params_.impulse.contactIterations;
