@@ -73,10 +73,12 @@ Run runScene(const std::string& sceneDir, const std::string& scene, const std::s
 }
 
 std::string header(const std::string& title, const std::string& columns) {
-  return "# " + title +
-         "\n# dt: 1/60 s; scenes: chapters/impulse_damped/scenes/\n# seed: 1 (the damped "
-         "stepper's default; visual plausibility is off, so no random number is drawn)\n# columns: " +
-         columns + "\n";
+  // Every run of the chapter uses the default parameters of its stepper: list them all.
+  std::string out = "# " + title + "\n# dt: 1/60 s; scenes: chapters/impulse_damped/scenes/\n";
+  for (const char* method : {"impulse", "damped"})
+    for (const auto& [key, value] : makeStepper(method)->parameters())
+      out += "# " + std::string(method) + "." + key + ": " + value + "\n";
+  return out + "# columns: " + columns + "\n";
 }
 
 /// Kinetic energy of every run against time (one column per run, same frames).

@@ -11,13 +11,36 @@ namespace boxsim {
 std::vector<std::string> methodNames() { return {"basic_colliding", "impulse", "damped"}; }
 
 std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueOptions& options) {
+  const auto refuse = [&](bool given, const char* option) {
+    if (given)
+      throw std::invalid_argument("the method '" + method + "' takes no " + option + " option");
+  };
   if (method == "basic_colliding") {
+    refuse(options.contactNormal.has_value(), "contact normal");
+    refuse(options.sleep.has_value(), "sleep");
+    refuse(options.plausibilitySeed.has_value(), "plausibility seed");
     BasicCollidingParams params;
     if (options.integrator) params.integrator = *options.integrator;
     return std::make_unique<BasicCollidingStepper>(params);
   }
-  if (method == "impulse") return std::make_unique<ImpulseStepper>();
-  if (method == "damped") return std::make_unique<DampedIntegrationStepper>();
+  refuse(options.integrator.has_value(), "integrator");
+  if (method == "impulse") {
+    refuse(options.sleep.has_value(), "sleep");
+    refuse(options.plausibilitySeed.has_value(), "plausibility seed");
+    ImpulseStepperParams params;
+    if (options.contactNormal) params.impulse.normalModel = *options.contactNormal;
+    return std::make_unique<ImpulseStepper>(params);
+  }
+  if (method == "damped") {
+    DampedIntegrationParams params;
+    if (options.contactNormal) params.impulse.normalModel = *options.contactNormal;
+    if (options.sleep) params.sleep.enabled = *options.sleep;
+    if (options.plausibilitySeed) {
+      params.plausibility.enabled = true;
+      params.plausibility.seed = *options.plausibilitySeed;
+    }
+    return std::make_unique<DampedIntegrationStepper>(params);
+  }
   std::string known;
   for (const std::string& m : methodNames()) known += (known.empty() ? "" : ", ") + m;
   throw std::invalid_argument("unknown method '" + method + "'; known methods: " + known);

@@ -10,6 +10,7 @@
 
 #include "boxsim/core/integrator.hpp"
 #include "boxsim/core/stepper.hpp"
+#include "boxsim/impulse_damped/impulse_params.hpp"
 
 namespace boxsim {
 
@@ -18,13 +19,20 @@ struct TechniqueOptions {
   /// Integrator between collisions (basic_colliding only; the impulse-based techniques
   /// integrate semi-implicitly by construction); empty: the technique's own default.
   std::optional<Integrator> integrator;
+  /// Contact normal model of the impulse-based techniques (\thesis{§3.3.2}); empty: default.
+  std::optional<ContactNormalModel> contactNormal;
+  /// Computational stability (sleeping, \thesis{§4.5}) of damped integration; empty: default (on).
+  std::optional<bool> sleep;
+  /// Visual plausibility (\thesis{§4.2}) of damped integration: perturbation on with this seed;
+  /// empty: off.
+  std::optional<unsigned long> plausibilitySeed;
 };
 
 /// The method names, in the order the thesis introduces them.
 std::vector<std::string> methodNames();
 
 /// Builds the stepper of a method. Throws std::invalid_argument naming the unknown method and
-/// listing the known ones.
+/// listing the known ones, or naming an option the method does not take.
 std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueOptions& options = {});
 
 }  // namespace boxsim

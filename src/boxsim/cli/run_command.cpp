@@ -1,4 +1,5 @@
 #include <chrono>
+#include <optional>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -16,6 +17,9 @@ struct RunArgs {
   std::string scene;
   std::string method = "basic_colliding";
   std::string integrator;  // empty: the method's default
+  std::string contactNormal;  // empty: the method's default
+  std::string sleep;          // "on", "off" or empty (the method's default)
+  std::optional<unsigned long> plausibilitySeed;
   double dt = 1.0 / 60.0;
   double duration = 5.0;
   std::string out;
@@ -62,6 +66,9 @@ class ProgressBar {
 int run(const RunArgs& args) {
   TechniqueOptions options;
   if (!args.integrator.empty()) options.integrator = parseIntegrator(args.integrator);
+  if (!args.contactNormal.empty()) options.contactNormal = parseContactNormalModel(args.contactNormal);
+  if (!args.sleep.empty()) options.sleep = args.sleep == "on";
+  options.plausibilitySeed = args.plausibilitySeed;
   // Build the stepper before loading the scene so an unknown method fails fast.
   std::unique_ptr<Stepper> stepper = makeStepper(args.method, options);
   checkedStepCount(args.dt, args.duration, 1);
@@ -102,6 +109,15 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("--integrator", args->integrator,
                   "Integrator between collisions: forward_euler, semi_implicit_euler "
                   "(default: the method's own; basic_colliding uses semi_implicit_euler)");
+  cmd->add_option("--contact-normal", args->contactNormal,
+                  "Contact normal model of impulse and damped: separating_axis, "
+                  "previous_closest_face (default), signed_distance")
+      ->check(CLI::IsMember({"separating_axis", "previous_closest_face", "signed_distance"}));
+  cmd->add_option("--sleep", args->sleep, "Sleeping of bodies at rest (damped): on (default), off")
+      ->check(CLI::IsMember({"on", "off"}));
+  cmd->add_option("--plausibility-seed", args->plausibilitySeed,
+                  "Turn on the random perturbation of fast collisions (damped, thesis §4.2) "
+                  "with this seed; the seed is written into the output header");
   cmd->add_option("--dt", args->dt, "Time step, s (> 0)")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);

@@ -285,8 +285,10 @@ StepStats DampedIntegrationStepper::step(World& world, double dt) {
   // ℓ before sleeping bodies stand in as immovable, which would hide them from it.
   const double margin = params_.impulse.contactMargin * smallestHalfExtent(world);
   const bool sleeping = params_.sleep.enabled;
-  prepareSleep(world);
+  // The guard comes first: prepareSleep already turns sleeping bodies into immovable stand-ins,
+  // and their real mass properties must come back whatever happens after.
   const ScopeExit restoreOnExit([&] { restoreAll(world); });
+  prepareSleep(world);
   const auto countAsleep = [&] {
     return static_cast<int>(std::count(asleep_.begin(), asleep_.end(), 1));
   };

@@ -57,10 +57,13 @@ void dampMomenta(World& world, double dt, const std::vector<char>& touched,
     const bool yAxisAligned = isYAxisAligned(o, params.alignedAngleDeg);
     o.s.P *= k1;
     o.s.L *= k2;
-    // A.2 L6-L10: a box lying nearly flat and barely moving vertically is resting on a face.
-    if (yAxisAligned && std::abs(o.s.P.y()) < params.verticalVelocityEps * pUnit) {
-      o.s.P.y() = 0.0;
-      o.s.L *= k3;
+    // A.2 L6-L10: a box lying nearly flat is turned the last bit flat (L10); if it also barely
+    // moves vertically it is resting on a face and loses its vertical velocity (L7-L9).
+    if (yAxisAligned) {
+      if (std::abs(o.s.P.y()) < params.verticalVelocityEps * pUnit) {
+        o.s.P.y() = 0.0;
+        o.s.L *= k3;
+      }
       tiltTowardsYAxis(o, params.tiltRateDegPerS * kPi / 180.0 * dt);
     }
     // A.2 L11-L19, component by component.
