@@ -124,3 +124,26 @@ TEST_CASE("An unknown method or a bad time step exits non-zero and writes nothin
   CHECK(missing.status != 0);
   CHECK_THAT(missing.stderrText, Contains("nope.json"));
 }
+
+TEST_CASE("Technique options reach the stepper and its header; options a method lacks are refused",
+          "[cli][input]") {
+  const ScratchDir kDir;
+  const std::string die = std::string(BOXSIM_SOURCE_DIR) + "/chapters/impulse_damped/scenes/die.json";
+  const std::string out = (kDir / "damped.dat").string();
+  const Result r = runBoxsim(kDir, "run " + die + " --method damped --duration 0.5 --sleep off "
+                                   "--contact-normal signed_distance --plausibility-seed 42 --out " + out);
+  REQUIRE(r.status == 0);
+  const boxsim::Trajectory t = boxsim::readTrajectory(out);
+  CHECK(t.meta.at("seed") == "42");
+  CHECK(t.meta.at("plausibility") == "on");
+  CHECK(t.meta.at("sleep") == "off");
+  CHECK(t.meta.at("contact_normal") == "signed_distance");
+  const std::string refused = (kDir / "refused.dat").string();
+  const Result basic = runBoxsim(kDir, "run " + die + " --method basic_colliding --sleep off --out " + refused);
+  CHECK(basic.status != 0);
+  CHECK_THAT(basic.stderrText, Contains("takes no sleep option"));
+  const Result impulse = runBoxsim(kDir, "run " + die + " --method impulse --integrator forward_euler --out " + refused);
+  CHECK(impulse.status != 0);
+  CHECK_THAT(impulse.stderrText, Contains("takes no integrator option"));
+  CHECK_FALSE(fs::exists(refused));
+}

@@ -85,8 +85,10 @@ int run(const RunArgs& args) {
   recorder.write(args.out);
   if (!args.quiet)
     std::cerr << "boxsim run: " << summary.steps << " steps, " << summary.events
-              << " collision events, " << summary.bisections << " bisection steps -> "
-              << args.out << "\n";
+              << (summary.bisections > 0
+                      ? " collision events, " + std::to_string(summary.bisections) + " bisection steps"
+                      : " impulses")
+              << " -> " << args.out << "\n";
   if (summary.limitedSteps > 0)
     std::cerr << "boxsim run: warning: " << summary.limitedSteps << " of " << summary.steps
               << " steps hit the work limit of the '" << stepper->name()
