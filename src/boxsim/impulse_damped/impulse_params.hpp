@@ -103,7 +103,7 @@ struct FixContactParams {
 
 /// Computational stability (\thesis{§4.5}): bodies that have come to rest sleep, cost nothing,
 /// and act as immovable until something disturbs them. The thesis names the idea and gives no
-/// rule; the rule and every threshold here are ours (damped_integration.hpp states the rule).
+/// rule; the rule and every threshold here are ours (sleeping.hpp states the rule).
 /// Speeds are in units of g Δt, as in DampingParams: a resting contact seen through the gravity
 /// trick of \alg{A.2 L1-L6} approaches at about 1 g Δt, so thresholds a few times that separate
 /// a disturbance from the load of a body at rest.
