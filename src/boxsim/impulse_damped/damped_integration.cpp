@@ -29,6 +29,7 @@ std::map<std::string, std::string> DampedIntegrationStepper::parameters() const 
           {"contact_normal", contactNormalModelName(params_.impulse.normalModel)},
           {"contact_margin_per_l", shortestText(params_.impulse.contactMargin)},
           {"damp", params_.damp ? "on" : "off"},
+          {"damp_colliding_bodies", params_.dampCollidingBodies ? "on" : "off"},
           {"fix_contact_constraints", params_.fixContactConstraints ? "on" : "off"},
           {"geometric_stability", params_.useGeometricStability ? "on" : "off"},
           {"k1_rate_per_s", shortestText(d.linearRate)},
@@ -85,15 +86,17 @@ StepStats DampedIntegrationStepper::step(World& world, double dt) {
   const BeforeCollide contactHook = [this](World& w, ImpulseContact& c, const CollideCall& call) {
     sleeping_.beforeCollide(w, c, call);
   };
+  // Bodies that take part in a contact (or, with dampCollidingBodies, a collision) this step.
+  std::vector<char> touched(world.bodies.size(), 0);
   // L1: RESOLVECOLLISIONS — positions predicted with gravity, impulses without; high-speed
   // collisions perturbed (§4.2).
   for (int i = 0; i < params_.impulse.collisionIterations; ++i)
     stats.events += impulsePass(world, dt, world.restitution, GravityMode::VelocityPlusGravity,
-                                GravityMode::VelocityNoGravity, margin, normals_, stable_, nullptr,
+                                GravityMode::VelocityNoGravity, margin, normals_, stable_,
+                                params_.dampCollidingBodies ? &touched : nullptr,
                                 hooked ? collisionHook : BeforeCollide{})
                         .impulses;
   // L2: RESOLVECONTACTS — restitution from -1 towards 0 (RESOLVECONTACTS L5), gravity trick.
-  std::vector<char> touched(n, 0);
   const int iterations = params_.impulse.contactIterations;
   for (int i = 1; i <= iterations; ++i)
     stats.events += impulsePass(world, dt, -1.0 + static_cast<double>(i) / iterations,
