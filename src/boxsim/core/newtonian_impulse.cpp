@@ -13,9 +13,8 @@ double applyNewtonianImpulse(RigidBody& a, RigidBody& b, const Vec3& p, const Ve
   if (vMinus >= 0.0) return 0.0;
   const Vec3 ra = p - a.s.x;
   const Vec3 rb = p - b.s.x;
-  const double denominator = a.invMass + b.invMass +
-                             n.dot((a.Iinv * ra.cross(n)).cross(ra)) +
-                             n.dot((b.Iinv * rb.cross(n)).cross(rb));
+  const double denominator = a.invMass + b.invMass + rotationalInverseMass(a.Iinv, ra, n) +
+                             rotationalInverseMass(b.Iinv, rb, n);
   if (denominator <= 0.0) return 0.0;
   const double j = -(1.0 + restitution) * vMinus / denominator;
   const Vec3 impulse = j * n;

@@ -13,6 +13,13 @@ namespace boxsim {
 double relativeNormalVelocity(const RigidBody& a, const RigidBody& b, const Vec3& p,
                               const Vec3& n);
 
+/// The rotational part of a body's inverse mass at a contact: n · ((I⁻¹ (r × n)) × r), 1/kg,
+/// for a point at offset r (m) from the centre of mass and unit normal n. Added to 1/m it is
+/// the normal velocity change of that material point per unit normal impulse.
+inline double rotationalInverseMass(const Mat3& Iinv, const Vec3& r, const Vec3& n) {
+  return n.dot((Iinv * r.cross(n)).cross(r));
+}
+
 /// Applies the frictionless Newtonian impulse j n at world point p (m) along the unit normal n
 /// (pointing from a to b) when the bodies approach there, so that the relative normal velocity
 /// becomes -restitution times what it was (Witkin & Baraff eq. 8-18):

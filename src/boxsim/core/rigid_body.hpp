@@ -4,6 +4,8 @@
 /// momentum P and angular momentum L, with v, ω, R and the world inverse inertia derived.
 #pragma once
 
+#include <cmath>
+
 #include "boxsim/core/math.hpp"
 
 namespace boxsim {
@@ -68,6 +70,14 @@ class RigidBody {
   void setAngularVelocity(const Vec3& angularVelocity);
   /// Velocity of the material point at world position p, m/s: v + ω × (p - x).
   Vec3 pointVelocity(const Vec3& p) const { return v + omega.cross(p - s.x); }
+  /// Index (0..2) of the box axis most nearly parallel to ±y: the axis of the face a box lying
+  /// on the ground rests on.
+  int mostVerticalAxis() const {
+    int k = 0;
+    for (int i = 1; i < 3; ++i)
+      if (std::abs(R(1, i)) > std::abs(R(1, k))) k = i;
+    return k;
+  }
   /// Kinetic energy ½ P·v + ½ L·ω, J.
   double kineticEnergy() const;
 };

@@ -33,9 +33,7 @@ struct BottomFace {
 /// The face of `body` whose outward normal points most nearly down.
 BottomFace bottomFaceOf(const RigidBody& body, const GeometricStabilityParams& params) {
   BottomFace face;
-  int k = 0;
-  for (int i = 1; i < 3; ++i)
-    if (std::abs(body.R(1, i)) > std::abs(body.R(1, k))) k = i;
+  const int k = body.mostVerticalAxis();
   face.level = 1.0 - std::abs(body.R(1, k)) <= params.normalTolerance;
   // The outward normal of the chosen face points down: against the axis if the axis points up.
   const double down = body.R(1, k) > 0.0 ? -1.0 : 1.0;

@@ -105,24 +105,17 @@ StepStats DampedIntegrationStepper::step(World& world, double dt) {
                                 sleeping ? contactHook : BeforeCollide{})
                         .impulses;
   // L3: IntegrateObjectVelocities (sleeping bodies stand immovable and are skipped).
-  for (RigidBody& body : world.bodies)
-    if (!body.immovable) {
-      body.s.P += dt * body.mass * world.gravity;
-      body.updateVelocities();
-    }
+  integrateVelocities(world, dt);
   // L4: DAMPENOBJECTS (its L22 integrates the positions).
   if (params_.damp) {
     dampenObjects(world, dt, touched, params_.damping);
   } else {
     predictPositions(world, dt, Vec3::Zero());
   }
-  // Contacts are resolved at predicted positions, so a body at rest stops where its predicted
-  // pose touches: up to g Δt² above its support. Contacts at the end of the step are gathered
-  // with that gap added to the margin, or resting boxes would not count as touching.
-  const double restingMargin = margin + world.gravity.norm() * dt * dt;
-  // L5: FIXCONTACTCONSTRAINTS; sleeping bodies are held.
+  const double restingMargin = restingContactMargin(world, margin, dt);
+  // L5: FIXCONTACTCONSTRAINTS; sleeping bodies still stand in as immovable, so none moves.
   if (params_.fixContactConstraints)
-    fixContactConstraints(world, restingMargin, params_.fixContacts, sleeping_.asleep());
+    fixContactConstraints(world, restingMargin, params_.fixContacts);
   // L6: SETGEOMETRICALLYSTABLE, for the next step's COLLIDE L11-L14.
   const std::vector<ContactManifold> contacts = findContacts(world, restingMargin);
   if (params_.useGeometricStability) {

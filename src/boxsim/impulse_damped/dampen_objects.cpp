@@ -12,9 +12,7 @@ namespace boxsim {
 namespace {
 /// The axis of the box closest to ±y, as a signed world vector pointing up.
 Vec3 upmostAxis(const RigidBody& body) {
-  int k = 0;
-  for (int i = 1; i < 3; ++i)
-    if (std::abs(body.R(1, i)) > std::abs(body.R(1, k))) k = i;
+  const int k = body.mostVerticalAxis();
   return body.R(1, k) < 0.0 ? Vec3(-body.R.col(k)) : Vec3(body.R.col(k));
 }
 

@@ -10,8 +10,7 @@
 
 namespace boxsim {
 
-int fixContactConstraints(World& world, double margin, const FixContactParams& params,
-                          const std::vector<char>& held) {
+int fixContactConstraints(World& world, double margin, const FixContactParams& params) {
   // A.2 L1: sortContactPointsAscending.
   std::vector<ContactManifold> contacts = findContacts(world, margin);
   const auto key = [](const ContactManifold& m) { return std::make_tuple(m.centroid().y(), m.a, m.b); };
@@ -24,7 +23,7 @@ int fixContactConstraints(World& world, double margin, const FixContactParams& p
     const int upper = aUpper ? c.a : c.b;
     const int lower = aUpper ? c.b : c.a;
     RigidBody& moving = world.bodies[upper];
-    if (moving.immovable || (!held.empty() && held[upper])) continue;
+    if (moving.immovable) continue;
     const Vec3 offset = aUpper ? Vec3(-c.normal) : Vec3(c.normal);
     const double ell = moving.halfExtents.minCoeff();
     const Obb stable = Obb::of(world.bodies[lower]);

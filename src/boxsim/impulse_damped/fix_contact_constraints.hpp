@@ -14,10 +14,9 @@ namespace boxsim {
 /// Contacts gathered with `margin` (m) are sorted by the height of their point (\alg{A.2 L1});
 /// for each, the upper body (higher centre; skipped when immovable) is nudged by ε1 ℓ along the
 /// lower-to-upper normal while the pair still overlaps by more than the slop (\alg{A.2 L2-L7}).
-/// ℓ is the upper body's smallest half extent. `held` (one flag per body, or empty) marks bodies
-/// that must not move (sleeping ones).
+/// ℓ is the upper body's smallest half extent. Sleeping bodies stand in as immovable while this
+/// runs, so they are never moved.
 /// \return the number of nudges made.
-int fixContactConstraints(World& world, double margin, const FixContactParams& params,
-                          const std::vector<char>& held = {});
+int fixContactConstraints(World& world, double margin, const FixContactParams& params);
 
 }  // namespace boxsim

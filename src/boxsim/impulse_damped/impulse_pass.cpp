@@ -17,19 +17,29 @@ void addVelocity(RigidBody& body, const Vec3& deltaV) {
   body.s.P += body.mass * deltaV;
   body.updateVelocities();
 }
+
+/// The velocity COLLIDE adds for the gravity trick (A.2 L1-L4): g Δt or zero.
+Vec3 gravityVelocity(const World& world, GravityMode gravity, double dt) {
+  return gravity == GravityMode::VelocityPlusGravity ? Vec3(dt * world.gravity) : Vec3(Vec3::Zero());
+}
+
+/// A.2 L5-L8: both bodies get deltaV, then the Newtonian impulse at the contact; returns j.
+double impulseWithGravity(RigidBody& a, RigidBody& b, const ImpulseContact& contact,
+                          double restitution, const Vec3& deltaV) {
+  addVelocity(a, deltaV);
+  addVelocity(b, deltaV);
+  return applyNewtonianImpulse(a, b, contact.point, contact.normal, restitution);
+}
 }  // namespace
 
 double collide(World& world, const ImpulseContact& contact, double restitution, GravityMode gravity,
                double dt, const std::vector<char>& stable) {
   RigidBody& a = world.bodies[contact.a];
   RigidBody& b = world.bodies[contact.b];
-  // A.2 L1-L6: the gravity trick, so a resting contact sees the velocity gravity is about to add.
-  const Vec3 deltaV = gravity == GravityMode::VelocityPlusGravity ? Vec3(dt * world.gravity)
-                                                                  : Vec3(Vec3::Zero());
-  addVelocity(a, deltaV);
-  addVelocity(b, deltaV);
-  // A.2 L7-L8: one contact point per collision, the Newtonian impulse there.
-  const double j = applyNewtonianImpulse(a, b, contact.point, contact.normal, restitution);
+  // A.2 L1-L8: the gravity trick, so a resting contact sees the velocity gravity is about to
+  // add, then one contact point per collision and the Newtonian impulse there.
+  const Vec3 deltaV = gravityVelocity(world, gravity, dt);
+  const double j = impulseWithGravity(a, b, contact, restitution, deltaV);
   // A.2 L9-L10.
   addVelocity(a, -deltaV);
   addVelocity(b, -deltaV);
@@ -50,8 +60,7 @@ double approachSpeed(const World& world, const ImpulseContact& contact, GravityM
   const RigidBody& a = world.bodies[contact.a];
   const RigidBody& b = world.bodies[contact.b];
   // A.2 L1-L6: g Δt is added to movable bodies only, so it cancels between two movable ones.
-  const Vec3 deltaV = gravity == GravityMode::VelocityPlusGravity ? Vec3(dt * world.gravity)
-                                                                  : Vec3(Vec3::Zero());
+  const Vec3 deltaV = gravityVelocity(world, gravity, dt);
   const Vec3 va = a.pointVelocity(contact.point) + (a.immovable ? Vec3(Vec3::Zero()) : deltaV);
   const Vec3 vb = b.pointVelocity(contact.point) + (b.immovable ? Vec3(Vec3::Zero()) : deltaV);
   return -contact.normal.dot(vb - va);
@@ -61,11 +70,7 @@ double collideImpulse(const World& world, const ImpulseContact& contact, double 
                       GravityMode gravity, double dt) {
   RigidBody a = world.bodies[contact.a];
   RigidBody b = world.bodies[contact.b];
-  const Vec3 deltaV = gravity == GravityMode::VelocityPlusGravity ? Vec3(dt * world.gravity)
-                                                                  : Vec3(Vec3::Zero());
-  addVelocity(a, deltaV);
-  addVelocity(b, deltaV);
-  return applyNewtonianImpulse(a, b, contact.point, contact.normal, restitution);
+  return impulseWithGravity(a, b, contact, restitution, gravityVelocity(world, gravity, dt));
 }
 
 SavedPoses predictPositions(World& world, double dt, const Vec3& extraVelocity) {
@@ -109,8 +114,7 @@ PassResult impulsePass(World& world, double dt, double restitution, GravityMode 
                        const std::vector<char>& stable, std::vector<char>* touched,
                        const BeforeCollide& beforeCollide) {
   // L2: integrateObjectPositions, remembering where every body was.
-  const Vec3 gravityStep = predict == GravityMode::VelocityPlusGravity ? Vec3(dt * world.gravity)
-                                                                       : Vec3(Vec3::Zero());
+  const Vec3 gravityStep = gravityVelocity(world, predict, dt);
   const SavedPoses original = predictPositions(world, dt, gravityStep);
   // L3: gatherCollisions.
   std::vector<ImpulseContact> contacts = normals.contactsOf(world, findContacts(world, margin));
@@ -126,6 +130,18 @@ PassResult impulsePass(World& world, double dt, double restitution, GravityMode 
   // L6: revertToOriginalPositions; the momenta the impulses changed stay.
   revertPositions(world, original);
   return result;
+}
+
+void integrateVelocities(World& world, double dt) {
+  for (RigidBody& body : world.bodies)
+    if (!body.immovable) {
+      body.s.P += dt * body.mass * world.gravity;
+      body.updateVelocities();
+    }
+}
+
+double restingContactMargin(const World& world, double margin, double dt) {
+  return margin + world.gravity.norm() * dt * dt;
 }
 
 double smallestHalfExtent(const World& world) {

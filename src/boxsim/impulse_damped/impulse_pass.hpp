@@ -98,6 +98,15 @@ PassResult impulsePass(World& world, double dt, double restitution, GravityMode 
                        const std::vector<char>& stable, std::vector<char>* touched = nullptr,
                        const BeforeCollide& beforeCollide = {});
 
+/// IntegrateObjectVelocities of \alg{A.2 L3} (and Guendelman et al.'s velocity update):
+/// P += Δt m g for every movable body; positions are not touched.
+void integrateVelocities(World& world, double dt);
+
+/// The margin (m) for contacts gathered at the end of a step: `margin` plus g Δt². Contacts are
+/// resolved at predicted positions, so a body at rest stops where its predicted pose touches,
+/// up to g Δt² above its support; without the gap, resting boxes would not count as touching.
+double restingContactMargin(const World& world, double margin, double dt);
+
 /// The smallest half extent of the movable bodies, m: the length ℓ the parameters scale with.
 double smallestHalfExtent(const World& world);
 

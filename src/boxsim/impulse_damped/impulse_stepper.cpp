@@ -33,11 +33,7 @@ StepStats ImpulseStepper::step(World& world, double dt) {
                                 GravityMode::VelocityNoGravity, margin, normals_, {})
                         .impulses;
   // 2. Velocities.
-  for (RigidBody& body : world.bodies)
-    if (!body.immovable) {
-      body.s.P += dt * body.mass * world.gravity;
-      body.updateVelocities();
-    }
+  integrateVelocities(world, dt);
   // 3. Contacts, restitution ramping from -1 (no impulse) to 0 (inelastic), A.2 L5.
   const int n = params_.impulse.contactIterations;
   for (int i = 1; i <= n; ++i)
@@ -50,10 +46,7 @@ StepStats ImpulseStepper::step(World& world, double dt) {
   // 5. Positions.
   predictPositions(world, dt, Vec3::Zero());
   normals_.endStep();
-  // Resting bodies stop up to g Δt² above their support (contacts are found at predicted
-  // positions), so the contacts reported include that gap.
-  const double restingMargin = margin + world.gravity.norm() * dt * dt;
-  stats.contacts = static_cast<int>(findContacts(world, restingMargin).size());
+  stats.contacts = static_cast<int>(findContacts(world, restingContactMargin(world, margin, dt)).size());
   return stats;
 }
 

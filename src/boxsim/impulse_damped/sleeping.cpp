@@ -3,6 +3,8 @@
 /// spreading, and falling asleep from the ground up.
 #include "boxsim/impulse_damped/sleeping.hpp"
 
+#include "boxsim/core/newtonian_impulse.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -71,11 +73,7 @@ bool Sleeping::begin(World& world) {
   sleepState_.resize(n);
   sleepStable_.resize(n, 0);
   saved_.resize(n);
-  restingOf_.assign(n, {});
-  for (std::size_t e = 0; e < resting_.size(); ++e) {
-    restingOf_[resting_[e].a].push_back(static_cast<int>(e));
-    restingOf_[resting_[e].b].push_back(static_cast<int>(e));
-  }
+  indexResting(n);
   if (!params_.enabled) {
     asleep_.assign(n, 0);
     return true;
@@ -135,6 +133,14 @@ void Sleeping::wake(World& world, int body) {
   }
 }
 
+void Sleeping::indexResting(std::size_t n) {
+  restingOf_.assign(n, {});
+  for (std::size_t e = 0; e < resting_.size(); ++e) {
+    restingOf_[resting_[e].a].push_back(static_cast<int>(e));
+    restingOf_[resting_[e].b].push_back(static_cast<int>(e));
+  }
+}
+
 double Sleeping::pointInverseMass(const World& world, int body, const Vec3& point,
                                   const Vec3& n) const {
   // The body's own mass properties, not the stand-in's: 1/m + n·((I⁻¹ (r × n)) × r), the
@@ -143,8 +149,7 @@ double Sleeping::pointInverseMass(const World& world, int body, const Vec3& poin
   const MassProperties m =
       standing_[body] ? saved_[body] : MassProperties{b.mass, b.invMass, b.IbodyInvDiag};
   const Mat3 Iinv = b.R * m.IbodyInvDiag.asDiagonal() * b.R.transpose();
-  const Vec3 r = point - b.s.x;
-  return m.invMass + n.dot((Iinv * r.cross(n)).cross(r));
+  return m.invMass + rotationalInverseMass(Iinv, point - b.s.x, n);
 }
 
 void Sleeping::beforeCollide(World& world, const ImpulseContact& contact,
@@ -191,11 +196,7 @@ void Sleeping::end(World& world, const std::vector<ContactManifold>& contacts,
     return l.a < r.a || (l.a == r.a && l.b < r.b);
   });
   resting_.swap(next);
-  restingOf_.assign(n, {});
-  for (std::size_t e = 0; e < resting_.size(); ++e) {
-    restingOf_[resting_[e].a].push_back(static_cast<int>(e));
-    restingOf_[resting_[e].b].push_back(static_cast<int>(e));
-  }
+  indexResting(n);
   // A sleeping body that an awake one penetrates beyond the slop (FIXCONTACTCONSTRAINTS could
   // not push the awake one out, e.g. it lies below) wakes, so the next step can separate them.
   for (const ContactManifold& m : contacts) {

@@ -126,6 +126,8 @@ class Sleeping {
   void restore(World& world, int body);
   void wake(World& world, int body);
   bool supportedBy(const ContactManifold& contact, int upper) const;
+  /// Rebuilds restingOf_ (for each of n bodies, the indices of its remembered contacts).
+  void indexResting(std::size_t n);
   double pointInverseMass(const World& world, int body, const Vec3& point, const Vec3& n) const;
 
   SleepParams params_;
