@@ -8,7 +8,8 @@
 // exactly and sort keys tie, immovable ground and walls at arbitrary indices, and the
 // thesis' pyramid and clump, where every contact is an exact touch.
 #include <catch2/catch.hpp>
-#include <gsl/gsl_rng.h>
+
+#include "seeded_random.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -28,41 +29,13 @@ namespace {
 
 using Pairs = std::vector<std::pair<int, int>>;
 
-/// Seeded GSL generator (mt19937: the same numbers on every platform), freed on scope exit.
-class Random {
- public:
-  explicit Random(unsigned long seed) : r_(gsl_rng_alloc(gsl_rng_mt19937)) {
-    gsl_rng_set(r_, seed);
-  }
-  ~Random() { gsl_rng_free(r_); }
-  Random(const Random&) = delete;
-  Random& operator=(const Random&) = delete;
-  double uniform(double lo, double hi) { return lo + (hi - lo) * gsl_rng_uniform(r_); }
-  int integer(int lo, int hi) {  // uniform in [lo, hi]
-    return lo + static_cast<int>(gsl_rng_uniform_int(r_, static_cast<unsigned long>(hi - lo + 1)));
-  }
-  /// A multiple of `step` in [lo, hi]: snapped values make bounds touch and sort keys tie.
-  double snapped(double lo, double hi, double step) {
-    return lo + step * integer(0, static_cast<int>((hi - lo) / step));
-  }
-  /// A uniformly distributed rotation (Shoemake's subgroup algorithm).
-  Quat rotation() {
-    const double u1 = uniform(0, 1), u2 = uniform(0, 2 * kPi), u3 = uniform(0, 2 * kPi);
-    const Quat q(std::sqrt(u1) * std::cos(u3), std::sqrt(1 - u1) * std::sin(u2),
-                 std::sqrt(1 - u1) * std::cos(u2), std::sqrt(u1) * std::sin(u3));
-    return q.normalized();
-  }
-
- private:
-  gsl_rng* r_;
-};
 
 /// A random scene of 2-300 boxes with edges of 0.05-5 m in a cube whose side grows with the
 /// cube root of the count, so density (and the share of overlapping pairs) varies from scene
 /// to scene but not with size. Every third scene is snapped: axis-aligned boxes with edges and
 /// positions on a 0.25 m grid, where many bounds touch exactly and many sort keys tie.
 /// With `immovables`, a ground and two walls are inserted at random places in the body list.
-World randomScene(Random& random, bool snapped, bool immovables) {
+World randomScene(testing::SeededRandom& random, bool snapped, bool immovables) {
   World world;
   const int count = random.integer(2, 300);
   double side = random.uniform(1.0, 6.0) * std::cbrt(static_cast<double>(count));
@@ -132,7 +105,7 @@ World collapsedClump(int count, double t) {
 
 TEST_CASE("Sweep and prune returns exactly the all-pairs list on 200 random scenes",
           "[collision][broad_phase]") {
-  Random random(20030501);
+  testing::SeededRandom random(20030501);
   long totalPairs = 0;
   for (int scene = 0; scene < 200; ++scene) {
     const bool snapped = scene % 3 == 0;
@@ -190,7 +163,7 @@ TEST_CASE("Sweep and prune returns exactly the all-pairs list on the 1000-cube c
 
 TEST_CASE("findContacts and firstIntersectingPair give identical results with both broad phases",
           "[collision][broad_phase]") {
-  Random random(1968);
+  testing::SeededRandom random(1968);
   int scenesWithContacts = 0;
   for (int scene = 0; scene < 40; ++scene) {
     const World world = randomScene(random, scene % 3 == 0, scene % 2 == 0);

@@ -8,7 +8,8 @@
 // closed-form check unless stated. Edge-edge depths carry Eberly's epsilon on purpose:
 // SeparatingAxisParams::absCEpsilon (1e-12) times the four half extents over |a_i x b_j|.
 #include <catch2/catch.hpp>
-#include <gsl/gsl_rng.h>
+
+#include "seeded_random.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -32,30 +33,6 @@ Obb cube(const Vec3& center, const Mat3& axes = Mat3::Identity(), double half = 
   return Obb{center, axes, Vec3::Constant(half)};
 }
 
-/// Seeded GSL generator (mt19937: the same numbers on every platform), freed on scope exit.
-class Random {
- public:
-  explicit Random(unsigned long seed) : r_(gsl_rng_alloc(gsl_rng_mt19937)) {
-    gsl_rng_set(r_, seed);
-  }
-  ~Random() { gsl_rng_free(r_); }
-  Random(const Random&) = delete;
-  Random& operator=(const Random&) = delete;
-  double uniform(double lo, double hi) { return lo + (hi - lo) * gsl_rng_uniform(r_); }
-  Vec3 vector(double lo, double hi) {
-    return Vec3(uniform(lo, hi), uniform(lo, hi), uniform(lo, hi));
-  }
-  /// A uniformly distributed rotation (Shoemake's subgroup algorithm).
-  Mat3 rotation() {
-    const double u1 = uniform(0, 1), u2 = uniform(0, 2 * kPi), u3 = uniform(0, 2 * kPi);
-    const Quat q(std::sqrt(u1) * std::cos(u3), std::sqrt(1 - u1) * std::sin(u2),
-                 std::sqrt(1 - u1) * std::cos(u2), std::sqrt(u1) * std::sin(u3));
-    return q.normalized().toRotationMatrix();
-  }
-
- private:
-  gsl_rng* r_;
-};
 
 std::vector<Vec3> positions(const ContactManifold& m) {
   std::vector<Vec3> p;
@@ -176,9 +153,9 @@ TEST_CASE("Flush boxes just apart or touching, in any orientation, pick a face a
   // Two of the edge axes of flush boxes coincide with the face normal, so their gaps equal the
   // face gap up to rounding; without Eberly's epsilon about a third of these cases pick an edge
   // axis, and the nearly-touching manifold collapses to one point.
-  Random random(31);
+  testing::SeededRandom random(31);
   for (int trial = 0; trial < 300; ++trial) {
-    const Mat3 R = random.rotation();
+    const Mat3 R = random.rotation().toRotationMatrix();
     for (double gap : {1e-6, 0.0}) {
       INFO("trial " << trial << " gap " << gap);
       const Obb a = cube(Vec3::Zero(), R);
@@ -192,12 +169,12 @@ TEST_CASE("Flush boxes just apart or touching, in any orientation, pick a face a
 
 TEST_CASE("The 15-axis depth agrees with brute-force corner projections on 1000 random pairs",
           "[collision][sat][reference]") {
-  Random random(20030501);
+  testing::SeededRandom random(20030501);
   const SeparatingAxisParams params;
   int intersecting = 0, separated = 0;
   for (int trial = 0; trial < 1000; ++trial) {
-    const Obb a{random.vector(-1, 1), random.rotation(), random.vector(0.1, 1.0)};
-    const Obb b{random.vector(-1, 1), random.rotation(), random.vector(0.1, 1.0)};
+    const Obb a{random.vector(-1, 1), random.rotation().toRotationMatrix(), random.vector(0.1, 1.0)};
+    const Obb b{random.vector(-1, 1), random.rotation().toRotationMatrix(), random.vector(0.1, 1.0)};
     // Least depth over the same 15 axes, from corners; and the smallest |a_i x b_j| tested,
     // which bounds the epsilon's inflation of an edge depth.
     double least = 1e300, minCross = 1.0;
@@ -426,10 +403,10 @@ TEST_CASE("Swapping the boxes keeps the depth, negates the normal and keeps the 
   // Equal flush cubes, one turned 45 degrees: the two faces tie in every respect but height.
   configs.push_back({"turned cube", cube(Vec3::Zero()),
                      cube(Vec3(0, 0.99, 0), rotation(kPi / 4, Vec3::UnitY()))});
-  Random random(7);
+  testing::SeededRandom random(7);
   for (int trial = 0; trial < 200; ++trial) {
-    const Obb a{random.vector(-0.5, 0.5), random.rotation(), random.vector(0.2, 1.0)};
-    const Obb b{random.vector(-0.5, 0.5), random.rotation(), random.vector(0.2, 1.0)};
+    const Obb a{random.vector(-0.5, 0.5), random.rotation().toRotationMatrix(), random.vector(0.2, 1.0)};
+    const Obb b{random.vector(-0.5, 0.5), random.rotation().toRotationMatrix(), random.vector(0.2, 1.0)};
     configs.push_back({"random", a, b});
   }
   int compared = 0;
@@ -448,14 +425,14 @@ TEST_CASE("Swapping the boxes keeps the depth, negates the normal and keeps the 
 
 TEST_CASE("Moving both boxes rigidly moves the contact with them", "[collision][symmetry]") {
   std::vector<Config> configs = configurations();
-  Random random(1984);
+  testing::SeededRandom random(1984);
   for (int trial = 0; trial < 50; ++trial) {
-    const Obb a{random.vector(-0.5, 0.5), random.rotation(), random.vector(0.2, 1.0)};
-    const Obb b{random.vector(-0.5, 0.5), random.rotation(), random.vector(0.2, 1.0)};
+    const Obb a{random.vector(-0.5, 0.5), random.rotation().toRotationMatrix(), random.vector(0.2, 1.0)};
+    const Obb b{random.vector(-0.5, 0.5), random.rotation().toRotationMatrix(), random.vector(0.2, 1.0)};
     configs.push_back({"random", a, b});
   }
   for (const Config& c : configs) {
-    const Mat3 Q = random.rotation();
+    const Mat3 Q = random.rotation().toRotationMatrix();
     const Vec3 t = random.vector(-10, 10);
     INFO(c.name);
     const ContactManifold m = collideBoxes(c.a, c.b);
@@ -475,9 +452,9 @@ TEST_CASE("Moving both boxes rigidly moves the contact with them", "[collision][
 // ---------------------------------------------------------------------------------------------
 
 TEST_CASE("Box bounds are the extremes of its corners", "[collision][broad_phase]") {
-  Random random(99);
+  testing::SeededRandom random(99);
   for (int trial = 0; trial < 20; ++trial) {
-    const Obb box{random.vector(-3, 3), random.rotation(), random.vector(0.1, 2.0)};
+    const Obb box{random.vector(-3, 3), random.rotation().toRotationMatrix(), random.vector(0.1, 2.0)};
     Vec3 lo, hi;
     obbBounds(box, 0.25, lo, hi);
     Vec3 cLo = box.corner(0), cHi = box.corner(0);

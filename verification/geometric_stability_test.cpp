@@ -3,8 +3,8 @@
 // corner tolerance, independence from body and contact order, and the footnote's hull rule
 // agreeing with the corner rule.
 #include <catch2/catch.hpp>
-#include <gsl/gsl_randist.h>
-#include <gsl/gsl_rng.h>
+
+#include "seeded_random.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -190,10 +190,7 @@ std::vector<std::pair<std::string, std::function<World()>>> allScenes() {
 std::vector<int> permutation(int n, unsigned long seed) {
   std::vector<int> order(n);
   for (int i = 0; i < n; ++i) order[i] = i;
-  gsl_rng* rng = gsl_rng_alloc(gsl_rng_mt19937);
-  gsl_rng_set(rng, seed);
-  gsl_ran_shuffle(rng, order.data(), order.size(), sizeof(int));
-  gsl_rng_free(rng);
+  testing::SeededRandom(seed).shuffle(order);
   return order;
 }
 

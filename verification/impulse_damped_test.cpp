@@ -1,9 +1,9 @@
 // Verification of the impulse-based step and damped integration (thesis §5.2-§5.4, Alg. A.2):
 // the chatter cases of §6.1 made measurable, the damping invariant, the contact fix, and the
 // plain impulse step measured on the same cases.
-#include <gsl/gsl_rng.h>
-
 #include <catch2/catch.hpp>
+
+#include "seeded_random.hpp"
 #include <cmath>
 #include <memory>
 
@@ -78,31 +78,26 @@ TEST_CASE("Damped integration brings the dropped die to rest with momenta exactl
 }
 
 TEST_CASE("The damping stage never raises kinetic energy", "[impulse_damped][invariant]") {
-  gsl_rng* rng = gsl_rng_alloc(gsl_rng_mt19937);
-  gsl_rng_set(rng, 20031);
+  testing::SeededRandom random(20031);
   const DampingParams params;
   for (int trial = 0; trial < 2000; ++trial) {
     World world;
-    const Vec3 h(0.05 + 2.0 * gsl_rng_uniform(rng), 0.05 + 2.0 * gsl_rng_uniform(rng),
-                 0.05 + 2.0 * gsl_rng_uniform(rng));
-    RigidBody b = RigidBody::box(h, 0.1 + 100.0 * gsl_rng_uniform(rng));
+    const Vec3 h = random.vector(0.05, 2.05);
+    RigidBody b = RigidBody::box(h, random.uniform(0.1, 100.1));
     // Orientations near flat exercise the tilt; others the general damping.
-    const double tilt = (trial % 2 == 0 ? 4.0 : 90.0) * gsl_rng_uniform(rng);
-    b.s.q = axisAngleDegrees(Vec3(gsl_rng_uniform(rng) - 0.5, gsl_rng_uniform(rng) - 0.5,
-                                  gsl_rng_uniform(rng) - 0.5 + 1e-3), tilt);
+    const double tilt = random.uniform(0.0, trial % 2 == 0 ? 4.0 : 90.0);
+    b.s.q = axisAngleDegrees(random.vector(-0.5, 0.5) + Vec3(0.0, 0.0, 1e-3), tilt);
     b.updateDerived();
     // Speeds from far below to far above the thresholds (g Δt ≈ 0.16 m/s).
-    const double scale = std::pow(10.0, -4.0 + 5.0 * gsl_rng_uniform(rng));
-    b.setVelocity(scale * Vec3(gsl_rng_uniform(rng) - 0.5, gsl_rng_uniform(rng) - 0.5, gsl_rng_uniform(rng) - 0.5));
-    b.setAngularVelocity(scale / h.minCoeff() *
-                         Vec3(gsl_rng_uniform(rng) - 0.5, gsl_rng_uniform(rng) - 0.5, gsl_rng_uniform(rng) - 0.5));
+    const double scale = std::pow(10.0, random.uniform(-4.0, 1.0));
+    b.setVelocity(scale * random.vector(-0.5, 0.5));
+    b.setAngularVelocity(scale / h.minCoeff() * random.vector(-0.5, 0.5));
     world.add(b, "b");
     const double before = world.kineticEnergy();
     dampMomenta(world, kDt, {1}, params);
     // Rounding in ½ P·v + ½ L·ω allows a few ulps.
     CHECK(world.kineticEnergy() <= before * (1.0 + 1e-12) + 1e-300);
   }
-  gsl_rng_free(rng);
 }
 
 TEST_CASE("A damped tower of 10 stands for 10 s with its top drifting under 1 mm",
