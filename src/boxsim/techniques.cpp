@@ -17,6 +17,7 @@ std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueO
   };
   if (method == "basic_colliding") {
     refuse(options.contactNormal.has_value(), "contact normal");
+    refuse(options.contactGathering.has_value(), "contact gathering");
     refuse(options.sleep.has_value(), "sleep");
     refuse(options.plausibilitySeed.has_value(), "plausibility seed");
     BasicCollidingParams params;
@@ -29,11 +30,13 @@ std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueO
     refuse(options.plausibilitySeed.has_value(), "plausibility seed");
     ImpulseStepperParams params;
     if (options.contactNormal) params.impulse.normalModel = *options.contactNormal;
+    if (options.contactGathering) params.impulse.gathering = *options.contactGathering;
     return std::make_unique<ImpulseStepper>(params);
   }
   if (method == "damped") {
     DampedIntegrationParams params;
     if (options.contactNormal) params.impulse.normalModel = *options.contactNormal;
+    if (options.contactGathering) params.impulse.gathering = *options.contactGathering;
     if (options.sleep) params.sleep.enabled = *options.sleep;
     if (options.plausibilitySeed) {
       params.plausibility.enabled = true;

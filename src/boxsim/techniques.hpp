@@ -21,6 +21,9 @@ struct TechniqueOptions {
   std::optional<Integrator> integrator;
   /// Contact normal model of the impulse-based techniques (\thesis{§3.3.2}); empty: default.
   std::optional<ContactNormalModel> contactNormal;
+  /// How the impulse-based techniques gather contacts at predicted positions
+  /// (contact_gathering.hpp); empty: default (once per step).
+  std::optional<ContactGatheringMode> contactGathering;
   /// Computational stability (sleeping, \thesis{§4.5}) of damped integration; empty: default (on).
   std::optional<bool> sleep;
   /// Visual plausibility (\thesis{§4.2}) of damped integration: perturbation on with this seed;

@@ -18,6 +18,7 @@ struct RunArgs {
   std::string method = "basic_colliding";
   std::string integrator;  // empty: the method's default
   std::string contactNormal;  // empty: the method's default
+  std::string contactGathering;  // empty: the method's default
   std::string sleep;          // "on", "off" or empty (the method's default)
   std::optional<unsigned long> plausibilitySeed;
   double dt = 1.0 / 60.0;
@@ -67,6 +68,8 @@ int run(const RunArgs& args) {
   TechniqueOptions options;
   if (!args.integrator.empty()) options.integrator = parseIntegrator(args.integrator);
   if (!args.contactNormal.empty()) options.contactNormal = parseContactNormalModel(args.contactNormal);
+  if (!args.contactGathering.empty())
+    options.contactGathering = parseContactGathering(args.contactGathering);
   if (!args.sleep.empty()) options.sleep = args.sleep == "on";
   options.plausibilitySeed = args.plausibilitySeed;
   // Build the stepper before loading the scene so an unknown method fails fast.
@@ -115,6 +118,11 @@ void addRunCommand(CLI::App& app) {
                   "Contact normal model of impulse and damped: separating_axis, "
                   "previous_closest_face (default), signed_distance")
       ->check(CLI::IsMember({"separating_axis", "previous_closest_face", "signed_distance"}));
+  cmd->add_option("--contact-gathering", args->contactGathering,
+                  "How impulse and damped find contacts at predicted positions: once_per_step "
+                  "(default, one narrow phase per step, first-order prediction), every_pass "
+                  "(Alg. A.2 as written)")
+      ->check(CLI::IsMember({"once_per_step", "every_pass"}));
   cmd->add_option("--sleep", args->sleep, "Sleeping of bodies at rest (damped): on (default), off")
       ->check(CLI::IsMember({"on", "off"}));
   cmd->add_option("--plausibility-seed", args->plausibilitySeed,

@@ -2,6 +2,7 @@
 /// Contact normal models (\thesis{§3.3.2}).
 #include "boxsim/impulse_damped/contact_normal.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -65,43 +66,56 @@ Vec3 ContactNormalTracker::signedDistanceNormal(const World& world,
   return sum.normalized();
 }
 
+ImpulseContact ContactNormalTracker::contactOf(const World& world, const ContactManifold& m) {
+  ImpulseContact c{m.a, m.b, m.centroid(), m.normal, m.depth};
+  const std::pair<int, int> key(m.a, m.b);
+  switch (model_) {
+    case ContactNormalModel::SeparatingAxis:
+      break;
+    case ContactNormalModel::SignedDistance:
+      c.normal = signedDistanceNormal(world, m);
+      break;
+    case ContactNormalModel::PreviousClosestFace: {
+      if (m.kind != AxisKind::EdgeEdge) {
+        // Remember the face the manifold was built on, signed so that it points from a to b.
+        const bool onB = m.kind == AxisKind::FaceB;
+        const Mat3& R = world.bodies[onB ? m.b : m.a].R;
+        int axis = 0;
+        for (int i = 1; i < 3; ++i)
+          if (std::abs(R.col(i).dot(m.normal)) > std::abs(R.col(axis).dot(m.normal))) axis = i;
+        current_.push_back(
+            PairFace{key, FaceRef{onB, axis, R.col(axis).dot(m.normal) < 0.0 ? -1.0 : 1.0}, 0});
+      }
+      const auto previous = std::lower_bound(
+          previous_.begin(), previous_.end(), key,
+          [](const PairFace& e, const std::pair<int, int>& k) { return e.pair < k; });
+      if (previous != previous_.end() && previous->pair == key) {
+        const FaceRef& f = previous->face;
+        c.normal = f.sign * world.bodies[f.onB ? m.b : m.a].R.col(f.axis);
+      }
+      break;
+    }
+  }
+  return c;
+}
+
 std::vector<ImpulseContact> ContactNormalTracker::contactsOf(
     const World& world, const std::vector<ContactManifold>& manifolds) {
   std::vector<ImpulseContact> contacts;
   contacts.reserve(manifolds.size());
-  for (const ContactManifold& m : manifolds) {
-    ImpulseContact c{m.a, m.b, m.centroid(), m.normal, m.depth};
-    const std::pair<int, int> key(m.a, m.b);
-    switch (model_) {
-      case ContactNormalModel::SeparatingAxis:
-        break;
-      case ContactNormalModel::SignedDistance:
-        c.normal = signedDistanceNormal(world, m);
-        break;
-      case ContactNormalModel::PreviousClosestFace: {
-        if (m.kind != AxisKind::EdgeEdge) {
-          // Remember the face the manifold was built on, signed so that it points from a to b.
-          const bool onB = m.kind == AxisKind::FaceB;
-          const Mat3& R = world.bodies[onB ? m.b : m.a].R;
-          int axis = 0;
-          for (int i = 1; i < 3; ++i)
-            if (std::abs(R.col(i).dot(m.normal)) > std::abs(R.col(axis).dot(m.normal))) axis = i;
-          current_[key] = FaceRef{onB, axis, R.col(axis).dot(m.normal) < 0.0 ? -1.0 : 1.0};
-        }
-        const auto previous = previous_.find(key);
-        if (previous != previous_.end()) {
-          const FaceRef& f = previous->second;
-          c.normal = f.sign * world.bodies[f.onB ? m.b : m.a].R.col(f.axis);
-        }
-        break;
-      }
-    }
-    contacts.push_back(c);
-  }
+  for (const ContactManifold& m : manifolds) contacts.push_back(contactOf(world, m));
   return contacts;
 }
 
 void ContactNormalTracker::endStep() {
+  // Sorted by pair, the latest record of a pair first, then one entry per pair.
+  for (std::size_t i = 0; i < current_.size(); ++i) current_[i].order = i;
+  std::sort(current_.begin(), current_.end(), [](const PairFace& l, const PairFace& r) {
+    return l.pair < r.pair || (l.pair == r.pair && l.order > r.order);
+  });
+  current_.erase(std::unique(current_.begin(), current_.end(),
+                             [](const PairFace& l, const PairFace& r) { return l.pair == r.pair; }),
+                 current_.end());
   previous_.swap(current_);
   current_.clear();
 }

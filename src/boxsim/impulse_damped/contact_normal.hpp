@@ -5,7 +5,6 @@
 /// distance (the improvement the footnote proposes, after Guendelman et al.'s signed distance).
 #pragma once
 
-#include <map>
 #include <utility>
 #include <vector>
 
@@ -42,6 +41,8 @@ class ContactNormalTracker {
   /// (when the pair touched then); the face found now is remembered for the next step.
   std::vector<ImpulseContact> contactsOf(const World& world,
                                          const std::vector<ContactManifold>& manifolds);
+  /// The contact of one manifold, as contactsOf gives it.
+  ImpulseContact contactOf(const World& world, const ContactManifold& m);
 
   /// Ends a step: the faces recorded during it become "the previous step's" faces.
   void endStep();
@@ -58,9 +59,19 @@ class ContactNormalTracker {
   };
   Vec3 signedDistanceNormal(const World& world, const ContactManifold& m) const;
 
+  /// A remembered face and the pair it belongs to.
+  struct PairFace {
+    std::pair<int, int> pair;  ///< (a, b)
+    FaceRef face;
+    std::size_t order = 0;     ///< when it was recorded in the step, for the latest-wins rule
+  };
+
   ContactNormalModel model_;
-  std::map<std::pair<int, int>, FaceRef> previous_;
-  std::map<std::pair<int, int>, FaceRef> current_;
+  /// The previous step's faces, sorted by pair with one entry per pair, for binary search.
+  std::vector<PairFace> previous_;
+  /// The faces recorded in this step, in the order recorded; a pair recorded twice keeps the
+  /// later face, as a map assignment would (endStep sorts and deduplicates).
+  std::vector<PairFace> current_;
 };
 
 }  // namespace boxsim

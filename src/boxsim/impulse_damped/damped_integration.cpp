@@ -12,7 +12,7 @@
 namespace boxsim {
 
 DampedIntegrationStepper::DampedIntegrationStepper(const DampedIntegrationParams& params)
-    : params_(params), normals_(params.impulse.normalModel), plausibility_(params.plausibility) {
+    : params_(params), gathering_(params.impulse), plausibility_(params.plausibility) {
   if (params.impulse.collisionIterations < 1 || params.impulse.contactIterations < 1)
     throw std::invalid_argument("damped: collision and contact iterations must be >= 1");
   // Assigned after the iteration check rather than initialised before it: with several invalid
@@ -28,6 +28,10 @@ std::map<std::string, std::string> DampedIntegrationStepper::parameters() const 
           {"contact_iterations", std::to_string(params_.impulse.contactIterations)},
           {"contact_normal", contactNormalModelName(params_.impulse.normalModel)},
           {"contact_margin_per_l", shortestText(params_.impulse.contactMargin)},
+          {"contact_gathering", contactGatheringName(params_.impulse.gathering)},
+          {"widening_factor", shortestText(params_.impulse.wideningFactor)},
+          {"min_widening_per_l", shortestText(params_.impulse.minWidening)},
+          {"exact_reach_per_l", shortestText(params_.impulse.exactReach)},
           {"damp", params_.damp ? "on" : "off"},
           {"damp_colliding_bodies", params_.dampCollidingBodies ? "on" : "off"},
           {"fix_contact_constraints", params_.fixContactConstraints ? "on" : "off"},
@@ -92,7 +96,7 @@ StepStats DampedIntegrationStepper::step(World& world, double dt) {
   // collisions perturbed (§4.2).
   for (int i = 0; i < params_.impulse.collisionIterations; ++i)
     stats.events += impulsePass(world, dt, world.restitution, GravityMode::VelocityPlusGravity,
-                                GravityMode::VelocityNoGravity, margin, normals_, stable_,
+                                GravityMode::VelocityNoGravity, margin, gathering_, stable_,
                                 params_.dampCollidingBodies ? &touched : nullptr,
                                 hooked ? collisionHook : BeforeCollide{})
                         .impulses;
@@ -101,7 +105,7 @@ StepStats DampedIntegrationStepper::step(World& world, double dt) {
   for (int i = 1; i <= iterations; ++i)
     stats.events += impulsePass(world, dt, -1.0 + static_cast<double>(i) / iterations,
                                 GravityMode::VelocityPlusGravity, GravityMode::VelocityPlusGravity,
-                                margin, normals_, stable_, &touched,
+                                margin, gathering_, stable_, &touched,
                                 sleeping ? contactHook : BeforeCollide{})
                         .impulses;
   // L3: IntegrateObjectVelocities (sleeping bodies stand immovable and are skipped).
@@ -114,10 +118,12 @@ StepStats DampedIntegrationStepper::step(World& world, double dt) {
   }
   const double restingMargin = restingContactMargin(world, margin, dt);
   // L5: FIXCONTACTCONSTRAINTS; sleeping bodies still stand in as immovable, so none moves.
-  if (params_.fixContactConstraints)
-    fixContactConstraints(world, restingMargin, params_.fixContacts);
-  // L6: SETGEOMETRICALLYSTABLE, for the next step's COLLIDE L11-L14.
-  const std::vector<ContactManifold> contacts = findContacts(world, restingMargin);
+  std::vector<ContactManifold> contacts;
+  const bool moved = !params_.fixContactConstraints ||
+                     fixContactConstraints(world, restingMargin, params_.fixContacts, &contacts) > 0;
+  // L6: SETGEOMETRICALLYSTABLE, for the next step's COLLIDE L11-L14; the contacts L5 found
+  // still hold when it nudged nothing.
+  if (moved) contacts = findContacts(world, restingMargin);
   if (params_.useGeometricStability) {
     stable_ = setGeometricallyStable(world, contacts, params_.geometricStability);
     sleeping_.holdStability(stable_);
@@ -125,9 +131,9 @@ StepStats DampedIntegrationStepper::step(World& world, double dt) {
   // The closest faces of the pairs the narrow phase skipped are recorded as if it had seen
   // them, so a pair that wakes keeps the normal it had (\thesis{§3.3.2}) and waking changes
   // nothing the normal model remembers.
-  if (sleeping && normals_.model() == ContactNormalModel::PreviousClosestFace)
-    normals_.contactsOf(world, sleeping_.skippedContacts(world));
-  normals_.endStep();
+  if (sleeping && gathering_.normals().model() == ContactNormalModel::PreviousClosestFace)
+    gathering_.normals().contactsOf(world, sleeping_.skippedContacts(world));
+  gathering_.endStep();
   if (sleeping) {
     sleeping_.end(world, contacts, stable_, dt);
     // The contacts the narrow phase skipped still touch: count them as before sleeping.

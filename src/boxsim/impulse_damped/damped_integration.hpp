@@ -11,7 +11,7 @@
 
 #include "boxsim/core/stepper.hpp"
 #include "boxsim/geometric_stability/geometric_stability.hpp"
-#include "boxsim/impulse_damped/contact_normal.hpp"
+#include "boxsim/impulse_damped/contact_gathering.hpp"
 #include "boxsim/impulse_damped/dampen_objects.hpp"
 #include "boxsim/impulse_damped/impulse_params.hpp"
 #include "boxsim/impulse_damped/impulse_pass.hpp"
@@ -73,7 +73,7 @@ class DampedIntegrationStepper final : public Stepper {
 
  private:
   DampedIntegrationParams params_;
-  ContactNormalTracker normals_;
+  ContactGathering gathering_;
   VisualPlausibility plausibility_;
   std::vector<char> stable_;
   Sleeping sleeping_;

@@ -10,9 +10,11 @@
 
 namespace boxsim {
 
-int fixContactConstraints(World& world, double margin, const FixContactParams& params) {
+int fixContactConstraints(World& world, double margin, const FixContactParams& params,
+                          std::vector<ContactManifold>* gathered) {
   // A.2 L1: sortContactPointsAscending.
   std::vector<ContactManifold> contacts = findContacts(world, margin);
+  if (gathered) *gathered = contacts;
   const auto key = [](const ContactManifold& m) { return std::make_tuple(m.centroid().y(), m.a, m.b); };
   std::stable_sort(contacts.begin(), contacts.end(),
                    [&](const ContactManifold& l, const ContactManifold& r) { return key(l) < key(r); });

@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "boxsim/collision/contact.hpp"
 #include "boxsim/core/world.hpp"
 #include "boxsim/impulse_damped/impulse_params.hpp"
 
@@ -16,7 +17,11 @@ namespace boxsim {
 /// lower-to-upper normal while the pair still overlaps by more than the slop (\alg{A.2 L2-L7}).
 /// ℓ is the upper body's smallest half extent. Sleeping bodies stand in as immovable while this
 /// runs, so they are never moved.
+/// `gathered`, when given, receives the contacts found before any nudge, in findContacts order:
+/// with no nudge made they are the contacts of the world as it is left, which saves the caller
+/// a narrow phase.
 /// \return the number of nudges made.
-int fixContactConstraints(World& world, double margin, const FixContactParams& params);
+int fixContactConstraints(World& world, double margin, const FixContactParams& params,
+                          std::vector<ContactManifold>* gathered = nullptr);
 
 }  // namespace boxsim

@@ -73,51 +73,12 @@ double collideImpulse(const World& world, const ImpulseContact& contact, double 
   return impulseWithGravity(a, b, contact, restitution, gravityVelocity(world, gravity, dt));
 }
 
-SavedPoses predictPositions(World& world, double dt, const Vec3& extraVelocity) {
-  SavedPoses saved;
-  saved.reserve(world.bodies.size());
-  for (RigidBody& body : world.bodies) {
-    saved.push_back({body.s.x, body.s.q, body.R, body.Iinv, body.immovable});
-    if (body.immovable) continue;
-    body.s.x += dt * (body.v + extraVelocity);
-    const Quat w(0.0, body.omega.x(), body.omega.y(), body.omega.z());
-    body.s.q.coeffs() += (0.5 * dt) * (w * body.s.q).coeffs();
-    body.s.q.normalize();
-    body.updateDerived();
-  }
-  return saved;
-}
-
-void restorePose(RigidBody& body, const SavedPose& pose) {
-  body.s.x = pose.x;
-  body.s.q = pose.q;
-  if (pose.immovable != body.immovable) {
-    body.updateDerived();
-    return;
-  }
-  body.R = pose.R;
-  body.Iinv = pose.Iinv;
-  body.updateVelocities();  // P and L may have changed while the body stood elsewhere
-}
-
-void revertPositions(World& world, const SavedPoses& saved) {
-  for (std::size_t i = 0; i < world.bodies.size(); ++i) {
-    // predictPositions leaves immovable bodies where they are; with many sleeping bodies
-    // standing in as immovable (§4.5), recomputing their derived values was most of the work.
-    if (world.bodies[i].immovable) continue;
-    restorePose(world.bodies[i], saved[i]);
-  }
-}
-
 PassResult impulsePass(World& world, double dt, double restitution, GravityMode predict,
-                       GravityMode impulseGravity, double margin, ContactNormalTracker& normals,
+                       GravityMode impulseGravity, double margin, ContactGathering& gathering,
                        const std::vector<char>& stable, std::vector<char>* touched,
                        const BeforeCollide& beforeCollide) {
-  // L2: integrateObjectPositions, remembering where every body was.
-  const Vec3 gravityStep = gravityVelocity(world, predict, dt);
-  const SavedPoses original = predictPositions(world, dt, gravityStep);
-  // L3: gatherCollisions.
-  std::vector<ImpulseContact> contacts = normals.contactsOf(world, findContacts(world, margin));
+  // L2-L3: integrateObjectPositions and gatherCollisions.
+  std::vector<ImpulseContact>& contacts = gathering.begin(world, dt, predict, margin);
   // L4-L5: collide every pair.
   PassResult result;
   result.contacts = static_cast<int>(contacts.size());
@@ -128,7 +89,7 @@ PassResult impulsePass(World& world, double dt, double restitution, GravityMode 
     if (collide(world, c, restitution, impulseGravity, dt, stable) > 0.0) ++result.impulses;
   }
   // L6: revertToOriginalPositions; the momenta the impulses changed stay.
-  revertPositions(world, original);
+  gathering.end(world);
   return result;
 }
 

@@ -10,15 +10,10 @@
 #include <vector>
 
 #include "boxsim/core/world.hpp"
+#include "boxsim/impulse_damped/contact_gathering.hpp"
 #include "boxsim/impulse_damped/contact_normal.hpp"
 
 namespace boxsim {
-
-/// Whether a velocity includes the gravity of the coming step (\alg{A.2} COLLIDE's argument).
-enum class GravityMode {
-  VelocityNoGravity,    ///< v as it is
-  VelocityPlusGravity,  ///< v + g Δt: what the body will have once gravity is integrated
-};
 
 /// COLLIDE(collision, restitution, gravity) of \alg{A.2}: with VelocityPlusGravity both bodies'
 /// velocities get g Δt added for the impulse and taken off after (L1-L6, L9-L10); the Newtonian
@@ -53,34 +48,6 @@ struct CollideCall {
 /// a sleeping body, \thesis{§4.5}); it must not move bodies or change their momenta.
 using BeforeCollide = std::function<void(World&, ImpulseContact&, const CollideCall&)>;
 
-/// The pose of one body with the derived values that depend on it only, so putting it back
-/// needs no recomputation of R and Iinv.
-struct SavedPose {
-  Vec3 x;     ///< m
-  Quat q;     ///< orientation
-  Mat3 R;     ///< rotation matrix of q
-  Mat3 Iinv;  ///< world inverse inertia at q
-  /// Whether the body was immovable when saved: a sleeping body woken in between (§4.5) has
-  /// other mass properties now, so its derived values must be recomputed, not restored.
-  bool immovable;
-};
-
-/// Poses of every body, in body order, for putting them back (\alg{A.2}
-/// revertToOriginalPositions).
-using SavedPoses = std::vector<SavedPose>;
-
-/// integrateObjectPositions of \alg{A.2}: moves every movable body to x + Δt (v + extra) and
-/// turns it by Δt ω (one explicit quaternion step, renormalised); returns the poses before.
-SavedPoses predictPositions(World& world, double dt, const Vec3& extraVelocity);
-
-/// Puts one body back to a saved pose, reusing the saved R and Iinv unless the body's
-/// mobility changed since (then everything derived is recomputed); v and ω are recomputed.
-void restorePose(RigidBody& body, const SavedPose& pose);
-
-/// Puts back poses saved by predictPositions; momenta are left as they are. Immovable bodies,
-/// which predictPositions does not move, are skipped.
-void revertPositions(World& world, const SavedPoses& saved);
-
 /// What one pass found.
 struct PassResult {
   int contacts = 0;  ///< pairs touching at the predicted positions
@@ -90,11 +57,12 @@ struct PassResult {
 /// One pass of RESOLVECOLLISIONS / RESOLVECONTACTS (\alg{A.2} L2-L6 of either):
 /// integrateObjectPositions (x += Δt v', q += Δt ½ ω q with v' = v + g Δt under
 /// `predict` = VelocityPlusGravity), gatherCollisions (every pair closer than `margin` m), COLLIDE
-/// each with `restitution` and `impulseGravity`, revertToOriginalPositions. Bodies marked in
+/// each with `restitution` and `impulseGravity`, revertToOriginalPositions; `gathering` does
+/// the moving and gathering, exactly or to first order (contact_gathering.hpp). Bodies marked in
 /// `touched` (one flag per body, or empty) get their flag set when they take part in a contact.
 /// `beforeCollide`, when set, sees each contact just before its COLLIDE.
 PassResult impulsePass(World& world, double dt, double restitution, GravityMode predict,
-                       GravityMode impulseGravity, double margin, ContactNormalTracker& normals,
+                       GravityMode impulseGravity, double margin, ContactGathering& gathering,
                        const std::vector<char>& stable, std::vector<char>* touched = nullptr,
                        const BeforeCollide& beforeCollide = {});
 

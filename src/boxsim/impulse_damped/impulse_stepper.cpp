@@ -11,7 +11,7 @@
 namespace boxsim {
 
 ImpulseStepper::ImpulseStepper(const ImpulseStepperParams& params)
-    : params_(params), normals_(params.impulse.normalModel) {
+    : params_(params), gathering_(params.impulse) {
   if (params.impulse.collisionIterations < 1 || params.impulse.contactIterations < 1)
     throw std::invalid_argument("impulse: collision and contact iterations must be >= 1");
 }
@@ -21,6 +21,10 @@ std::map<std::string, std::string> ImpulseStepper::parameters() const {
           {"contact_iterations", std::to_string(params_.impulse.contactIterations)},
           {"contact_normal", contactNormalModelName(params_.impulse.normalModel)},
           {"contact_margin_per_l", shortestText(params_.impulse.contactMargin)},
+          {"contact_gathering", contactGatheringName(params_.impulse.gathering)},
+          {"widening_factor", shortestText(params_.impulse.wideningFactor)},
+          {"min_widening_per_l", shortestText(params_.impulse.minWidening)},
+          {"exact_reach_per_l", shortestText(params_.impulse.exactReach)},
           {"shock_propagation", params_.shockPropagation ? "on" : "off"}};
 }
 
@@ -30,7 +34,7 @@ StepStats ImpulseStepper::step(World& world, double dt) {
   // 1. Collisions, at positions predicted with the velocities as they are.
   for (int i = 0; i < params_.impulse.collisionIterations; ++i)
     stats.events += impulsePass(world, dt, world.restitution, GravityMode::VelocityNoGravity,
-                                GravityMode::VelocityNoGravity, margin, normals_, {})
+                                GravityMode::VelocityNoGravity, margin, gathering_, {})
                         .impulses;
   // 2. Velocities.
   integrateVelocities(world, dt);
@@ -39,13 +43,13 @@ StepStats ImpulseStepper::step(World& world, double dt) {
   for (int i = 1; i <= n; ++i)
     stats.events += impulsePass(world, dt, -1.0 + static_cast<double>(i) / n,
                                 GravityMode::VelocityNoGravity, GravityMode::VelocityNoGravity,
-                                margin, normals_, {})
+                                margin, gathering_, {})
                         .impulses;
   // 4. Shock propagation.
-  if (params_.shockPropagation) stats.events += propagateShock(world, dt, margin, normals_);
+  if (params_.shockPropagation) stats.events += propagateShock(world, dt, margin, gathering_);
   // 5. Positions.
   predictPositions(world, dt, Vec3::Zero());
-  normals_.endStep();
+  gathering_.endStep();
   stats.contacts = static_cast<int>(findContacts(world, restingContactMargin(world, margin, dt)).size());
   return stats;
 }

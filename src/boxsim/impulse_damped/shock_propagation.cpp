@@ -38,9 +38,9 @@ std::vector<int> contactLevels(const World& world, const std::vector<ImpulseCont
   return level;
 }
 
-int propagateShock(World& world, double dt, double margin, ContactNormalTracker& normals) {
-  const SavedPoses original = predictPositions(world, dt, Vec3::Zero());
-  std::vector<ImpulseContact> contacts = normals.contactsOf(world, findContacts(world, margin));
+int propagateShock(World& world, double dt, double margin, ContactGathering& gathering) {
+  std::vector<ImpulseContact>& contacts =
+      gathering.begin(world, dt, GravityMode::VelocityNoGravity, margin);
   const std::vector<int> level = contactLevels(world, contacts);
   const auto key = [&](const ImpulseContact& c) {
     return std::make_tuple(std::max(level[c.a], level[c.b]), c.point.y(), c.a, c.b);
@@ -67,7 +67,7 @@ int propagateShock(World& world, double dt, double margin, ContactNormalTracker&
     }
     if (j > 0.0) ++impulses;
   }
-  revertPositions(world, original);
+  gathering.end(world);
   return impulses;
 }
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "boxsim/core/world.hpp"
-#include "boxsim/impulse_damped/contact_normal.hpp"
+#include "boxsim/impulse_damped/contact_gathering.hpp"
 
 namespace boxsim {
 
@@ -22,6 +22,6 @@ std::vector<int> contactLevels(const World& world, const std::vector<ImpulseCont
 /// contact between levels is resolved with restitution 0 and the lower body held fixed, a
 /// contact within a level as usual. Positions are restored afterwards; momenta keep the change.
 /// \return the number of impulses applied.
-int propagateShock(World& world, double dt, double margin, ContactNormalTracker& normals);
+int propagateShock(World& world, double dt, double margin, ContactGathering& gathering);
 
 }  // namespace boxsim
