@@ -18,6 +18,10 @@ namespace {
 
 /// A swept body's bounds along the sweep axis, m: the element the sweep sorts, kept apart
 /// from the full bounds so the inner loop walks contiguous memory.
+/// An immovable body is swept like the others unless its largest half extent is more than this
+/// many times the largest half extent of any movable body: then it is a ground or a wall.
+constexpr double kSweptSizeRatio = 4.0;
+
 struct Interval {
   double lo = 0.0;
   double hi = 0.0;
@@ -57,19 +61,28 @@ void sortPairs(std::vector<std::pair<int, int>>& pairs, int n) {
 
 }  // namespace
 
-std::vector<std::pair<int, int>> sweepAndPrunePairs(const World& world, double margin) {
+std::vector<std::pair<int, int>> sweepAndPrunePairs(const World& world, double margin,
+                                                    const std::vector<double>& growth) {
   const int n = static_cast<int>(world.bodies.size());
   std::vector<Vec3> lo(n), hi(n);
-  for (int i = 0; i < n; ++i) obbBounds(Obb::of(world.bodies[i]), 0.0, lo[i], hi[i]);
+  for (int i = 0; i < n; ++i)
+    obbBounds(Obb::of(world.bodies[i]), growth.empty() ? 0.0 : growth[i], lo[i], hi[i]);
 
-  // Immovable bodies are few and the ground among them is as wide as the scene: swept, it
-  // would overlap every interval along the sweep axis and make the sweep quadratic. Bounds
+  // A ground as wide as the scene, swept, would overlap every interval along the sweep axis and
+  // make the sweep quadratic: immovable bodies much larger than every movable one are tested
+  // directly. Sleeping bodies standing in as immovable (§4.5) are box-sized and many, so they
+  // are swept: tested directly, they made the sweep quadratic in the number of sleepers. Bounds
   // that are not finite (a state gone to NaN) cannot be sorted, so they are tested directly
   // too, which keeps the result equal to the all-pairs one even then.
+  double largestMovable = 0.0;
+  for (const RigidBody& b : world.bodies)
+    if (!b.immovable) largestMovable = std::max(largestMovable, b.halfExtents.maxCoeff());
   std::vector<int> direct, swept;
   std::vector<char> isDirect(n, 0);
   for (int i = 0; i < n; ++i) {
-    isDirect[i] = world.bodies[i].immovable || !lo[i].allFinite() || !hi[i].allFinite();
+    const RigidBody& b = world.bodies[i];
+    const bool huge = b.immovable && !(b.halfExtents.maxCoeff() <= kSweptSizeRatio * largestMovable);
+    isDirect[i] = huge || !lo[i].allFinite() || !hi[i].allFinite();
     (isDirect[i] ? direct : swept).push_back(i);
   }
 
@@ -116,6 +129,7 @@ std::vector<std::pair<int, int>> sweepAndPrunePairs(const World& world, double m
         if (intervals[q].lo - end > margin) break;
         if (boundsWithin(sortedLo[p], sortedHi[p], sortedLo[q], sortedHi[q], margin)) {
           const int a = intervals[p].body, b = intervals[q].body;
+          if (world.bodies[a].immovable && world.bodies[b].immovable) continue;
           pairs.emplace_back(std::min(a, b), std::max(a, b));
         }
       }

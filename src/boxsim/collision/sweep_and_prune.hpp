@@ -24,17 +24,24 @@ namespace boxsim {
 /// on which their centres spread most (ties by body index, so the order is total and the
 /// same on every run), and each is compared only with those that follow it in that order
 /// until their lower end lies beyond its upper end plus margin. Immovable bodies are tested
-/// directly against every other body: the ground spans the whole scene, so sweeping it would
-/// make it overlap everything along the sweep axis.
+/// directly against every other body when they are much larger than every movable body (a
+/// ground spans the whole scene, so sweeping it would make it overlap everything along the
+/// sweep axis); box-sized immovable bodies, such as sleeping bodies standing in as immovable,
+/// are swept. Pairs of two immovable bodies are never reported.
+///
+/// `growth`, when not empty, holds one length per body (m, >= 0): body i's bounds are grown by
+/// growth[i] on every side before the margin test, so a pair is reported when its grown bounds
+/// come within `margin`. Contact gathering uses it to widen each body by how far it can move.
 ///
 /// Complexity: O(n log n + s + m n + k) time and O(n + k) memory for n bodies, m of them
-/// immovable, k reported pairs and s >= k pairs of movable bodies that overlap along the
+/// tested directly, k reported pairs and s >= k pairs of movable bodies that overlap along the
 /// sweep axis only; O(n log n + k) for the usual few immovable bodies and scattered scenes,
 /// against the all-pairs test's O(n²). A regular grid is the sweep's worst case: every box of
 /// a slab across the sweep axis overlaps the rest of its slab along that axis, so s is about
 /// n^{5/3}/2 for the clump of \thesis{Fig. 6.7} at its start, still far below n²/2. Each call
 /// sorts afresh (no state is kept between calls), so calls are independent and may run
 /// concurrently.
-std::vector<std::pair<int, int>> sweepAndPrunePairs(const World& world, double margin = 0.0);
+std::vector<std::pair<int, int>> sweepAndPrunePairs(const World& world, double margin = 0.0,
+                                                    const std::vector<double>& growth = {});
 
 }  // namespace boxsim

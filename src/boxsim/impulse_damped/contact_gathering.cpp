@@ -8,6 +8,7 @@
 
 #include "boxsim/collision/broad_phase.hpp"
 #include "boxsim/collision/contact_manifold.hpp"
+#include "boxsim/collision/sweep_and_prune.hpp"
 
 namespace boxsim {
 
@@ -76,12 +77,11 @@ void revertPositions(World& world, const SavedPoses& saved) {
 
 ContactGathering::ContactGathering(const ImpulseParams& params)
     : params_(params), normals_(params.normalModel) {
-  if (!(params.wideningFactor >= 1.0) || !std::isfinite(params.wideningFactor) ||
-      !(params.minWidening >= 0.0) || !std::isfinite(params.minWidening) ||
-      !(params.exactReach >= 0.0) || !std::isfinite(params.exactReach))
+  if (!(params.exactReach >= 0.0) || !std::isfinite(params.exactReach) ||
+      !(params.slowWidening >= params.exactReach) || !std::isfinite(params.slowWidening))
     throw std::invalid_argument(
-        "contact gathering: the widening factor must be a finite number >= 1, the least "
-        "widening and the exact reach finite numbers >= 0 (units of l)");
+        "contact gathering: the exact reach must be a finite number >= 0 and the widening a "
+        "finite number >= the exact reach (units of l)");
 }
 
 double ContactGathering::reach(const RigidBody& body, const Vec3& gravityStep, double dt) const {
@@ -89,37 +89,33 @@ double ContactGathering::reach(const RigidBody& body, const Vec3& gravityStep, d
   return dt * ((body.v + gravityStep).norm() + body.omega.norm() * body.halfExtents.norm());
 }
 
-bool ContactGathering::cacheCovers(const World& world, const Vec3& gravityStep,
-                                   double dt) const {
-  if (!cached_ || widening_.size() != world.bodies.size()) return false;
-  for (std::size_t i = 0; i < world.bodies.size(); ++i) {
-    const RigidBody& body = world.bodies[i];
-    if (static_cast<char>(body.immovable) != immovable_[i]) return false;
-    if (reach(body, gravityStep, dt) > widening_[i]) return false;
-  }
+bool ContactGathering::cacheCovers(const World& world) const {
+  if (!cached_ || immovable_.size() != world.bodies.size()) return false;
+  for (std::size_t i = 0; i < world.bodies.size(); ++i)
+    if (static_cast<char>(world.bodies[i].immovable) != immovable_[i]) return false;
   return true;
 }
 
-void ContactGathering::buildCache(World& world, const Vec3& gravityStep, double dt,
+void ContactGathering::buildCache(const World& world, const Vec3& gravityStep, double dt,
                                   double margin) {
   const std::size_t n = world.bodies.size();
-  widening_.assign(n, 0.0);
+  std::vector<double> widening(n, 0.0);
   immovable_.assign(n, 0);
-  double widest = 0.0;
+  if (fast_.size() != n) fast_.assign(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
     const RigidBody& body = world.bodies[i];
     immovable_[i] = static_cast<char>(body.immovable);
     if (body.immovable) continue;
-    // Headroom, so that the velocity changes of the coming passes rarely force a rebuild.
-    widening_[i] = std::max(params_.wideningFactor * reach(body, gravityStep, dt),
-                            params_.minWidening * body.halfExtents.minCoeff());
-    widest = std::max(widest, widening_[i]);
+    widening[i] = params_.slowWidening * body.halfExtents.minCoeff();
+    if (reach(body, gravityStep, dt) > params_.exactReach * body.halfExtents.minCoeff())
+      fast_[i] = 1;
   }
-  // One narrow phase at the current poses; each pair gets the margin its own two bodies can
-  // need, and the broad phase the widest any pair can.
+  // One broad and narrow phase at the current poses, each body widened by more than a slow
+  // body can move (slowWidening >= exactReach).
   pairs_.clear();
-  for (const auto& [i, j] : candidatePairs(world, margin + 2.0 * widest)) {
-    const double pairMargin = margin + widening_[i] + widening_[j];
+  for (const auto& [i, j] : sweepAndPrunePairs(world, margin, widening)) {
+    if (fast_[i] || fast_[j]) continue;  // gathered as written, pass by pass
+    const double pairMargin = margin + widening[i] + widening[j];
     ContactManifold m = collideBoxes(Obb::of(world.bodies[i]), Obb::of(world.bodies[j]), pairMargin);
     // Closer than the margin along every axis, yet no point: boxes passing corner by corner.
     // The pair stays, with no points, and gets the exact narrow phase every pass.
@@ -128,7 +124,8 @@ void ContactGathering::buildCache(World& world, const Vec3& gravityStep, double 
     m.b = j;
     const Vec3& xa = world.bodies[i].s.x;
     const Vec3& xb = world.bodies[j].s.x;
-    CachedPair pair{normals_.contactOf(world, m), m.normal, {}, 0};
+    // The normal model's choice now; its face is remembered only in the passes the pair touches.
+    CachedPair pair{normals_.contactOf(world, m, false), m, {}, 0};
     for (int k = 0; k < m.count; ++k) {
       const ContactPoint& p = m.points[k];
       pair.points[pair.count++] = CachedPoint{p.position, p.depth, p.position - xa, p.position - xb};
@@ -138,6 +135,46 @@ void ContactGathering::buildCache(World& world, const Vec3& gravityStep, double 
   ++narrowPhases_;
   cacheMargin_ = margin;
   cached_ = true;
+}
+
+bool ContactGathering::predictedContact(const World& world, const CachedPair& pair,
+                                        const Vec3& gravityStep, double dt, double margin,
+                                        ImpulseContact& contact) const {
+  const RigidBody& a = world.bodies[pair.contact.a];
+  const RigidBody& b = world.bodies[pair.contact.b];
+  const Vec3 ua = a.immovable ? a.v : Vec3(a.v + gravityStep);
+  const Vec3 ub = b.immovable ? b.v : Vec3(b.v + gravityStep);
+  const Vec3& n = pair.manifold.normal;
+  const double linear = n.dot(ua - ub);
+  Vec3 sum = Vec3::Zero();
+  int kept = 0;
+  double deepest = 0.0;
+  for (int i = 0; i < pair.count; ++i) {
+    const CachedPoint& p = pair.points[i];
+    const double depth = p.depth + dt * (linear + n.dot(a.omega.cross(p.ra)) -
+                                         n.dot(b.omega.cross(p.rb))) +
+                         (0.5 * dt * dt) * (centripetal(a.omega, p.ra, n) -
+                                            centripetal(b.omega, p.rb, n));
+    if (depth <= -margin) continue;
+    deepest = kept == 0 ? depth : std::max(deepest, depth);
+    sum += p.position;
+    ++kept;
+  }
+  if (kept == 0) return false;
+  contact = pair.contact;
+  contact.point = sum / static_cast<double>(kept);
+  contact.depth = deepest;
+  return true;
+}
+
+bool ContactGathering::exactContact(const World& world, int i, int j, double margin,
+                                    ImpulseContact& contact) {
+  ContactManifold m = collideBoxes(Obb::of(world.bodies[i]), Obb::of(world.bodies[j]), margin);
+  if (m.count == 0) return false;
+  m.a = i;
+  m.b = j;
+  contact = normals_.contactOf(world, m);
+  return true;
 }
 
 std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, GravityMode predict,
@@ -152,59 +189,52 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
     return contacts_;
   }
   // DEVIATION(A.2 L2-L3): the prediction of the file comment.
-  if (margin != cacheMargin_ || !cacheCovers(world, gravityStep, dt))
-    buildCache(world, gravityStep, dt, margin);
-  // A.2 L2 for the fast bodies only: they go to their predicted poses, as written.
+  if (margin != cacheMargin_ || !cacheCovers(world)) buildCache(world, gravityStep, dt, margin);
+  // A.2 L2 for the fast bodies only: they go to their predicted poses, as written. A body fast
+  // when the cache was built stays fast for the step: the cache holds no pairs of its.
   const std::size_t n = world.bodies.size();
   moved_.assign(n, 0);
   saved_.resize(n);
+  bool anyFast = false;
   for (std::size_t i = 0; i < n; ++i) {
     RigidBody& body = world.bodies[i];
-    if (body.immovable ||
+    if (body.immovable) continue;
+    if (!fast_[i] &&
         reach(body, gravityStep, dt) <= params_.exactReach * body.halfExtents.minCoeff())
       continue;
     saved_[i] = SavedPose{body.s.x, body.s.q, body.R, body.Iinv, false};
     moved_[i] = 1;
+    anyFast = true;
     movePredicted(body, dt, gravityStep);
   }
+  // A.2 L3 for the pairs with a fast body: the broad and narrow phase where the bodies now
+  // stand, as written. Sorted by pair like the cache, so the two lists merge into one order.
+  std::vector<std::pair<int, int>> fastPairs;
+  if (anyFast)
+    for (const std::pair<int, int>& p : sweepAndPrunePairs(world, margin))
+      if (moved_[p.first] || moved_[p.second]) fastPairs.push_back(p);
   contacts_.clear();
+  ImpulseContact c;
+  std::size_t f = 0;
   for (const CachedPair& pair : pairs_) {
-    const RigidBody& a = world.bodies[pair.contact.a];
-    const RigidBody& b = world.bodies[pair.contact.b];
-    if (moved_[pair.contact.a] || moved_[pair.contact.b] || pair.count == 0) {
-      // A fast body, or no point to predict from: the narrow phase of this pair where its
-      // bodies stand for this pass (a fast body at its predicted pose), as written.
-      ContactManifold m = collideBoxes(Obb::of(a), Obb::of(b), margin);
-      if (m.count == 0) continue;
-      m.a = pair.contact.a;
-      m.b = pair.contact.b;
-      contacts_.push_back(normals_.contactOf(world, m));
-      continue;
+    const std::pair<int, int> key(pair.contact.a, pair.contact.b);
+    for (; f < fastPairs.size() && fastPairs[f] < key; ++f)
+      if (exactContact(world, fastPairs[f].first, fastPairs[f].second, margin, c))
+        contacts_.push_back(c);
+    // No point to predict from: the narrow phase where the two slow bodies stand.
+    // A body that turned fast in this step: its pairs are among the fast ones now.
+    if (moved_[key.first] || moved_[key.second]) continue;
+    if (pair.count == 0) {
+      if (exactContact(world, key.first, key.second, margin, c)) contacts_.push_back(c);
+    } else if (predictedContact(world, pair, gravityStep, dt, margin, c)) {
+      // The bodies have not moved since the cache was built: its manifold names the face.
+      normals_.remember(world, pair.manifold);
+      contacts_.push_back(c);
     }
-    const Vec3 ua = a.immovable ? a.v : Vec3(a.v + gravityStep);
-    const Vec3 ub = b.immovable ? b.v : Vec3(b.v + gravityStep);
-    const Vec3& nm = pair.manifoldNormal;
-    const double linear = nm.dot(ua - ub);
-    Vec3 sum = Vec3::Zero();
-    int kept = 0;
-    double deepest = 0.0;
-    for (int i = 0; i < pair.count; ++i) {
-      const CachedPoint& p = pair.points[i];
-      const double depth = p.depth + dt * (linear + nm.dot(a.omega.cross(p.ra)) -
-                                           nm.dot(b.omega.cross(p.rb))) +
-                           (0.5 * dt * dt) * (centripetal(a.omega, p.ra, nm) -
-                                              centripetal(b.omega, p.rb, nm));
-      if (depth <= -margin) continue;
-      deepest = kept == 0 ? depth : std::max(deepest, depth);
-      sum += p.position;
-      ++kept;
-    }
-    if (kept == 0) continue;
-    ImpulseContact c = pair.contact;
-    c.point = sum / static_cast<double>(kept);
-    c.depth = deepest;
-    contacts_.push_back(c);
   }
+  for (; f < fastPairs.size(); ++f)
+    if (exactContact(world, fastPairs[f].first, fastPairs[f].second, margin, c))
+      contacts_.push_back(c);
   return contacts_;
 }
 
@@ -218,6 +248,7 @@ void ContactGathering::end(World& world) {
 void ContactGathering::endStep() {
   normals_.endStep();
   cached_ = false;
+  fast_.clear();
 }
 
 }  // namespace boxsim

@@ -5,33 +5,35 @@
 ///
 /// - EveryPass, \alg{A.2} as written (and Guendelman et al. 2003, §7): every pass moves each
 ///   body to its predicted pose, runs the broad and narrow phase there, and moves it back.
-/// - OncePerStep, the default: one narrow phase per step at the current poses, with a margin
-///   widened by how far each body can move in the step (its reach, Δt (|v'| + |ω| ρ) with ρ the
-///   half diagonal). Each pass then treats two kinds of body differently:
-///   - a body whose reach is above ImpulseParams::exactReach is moved to its predicted pose, as
-///     written, and each cached pair it belongs to gets its narrow phase there;
-///   - a pair of two slower bodies stays where it is, and the depth of each cached contact point
-///     at the predicted poses is a Taylor expansion in the displacement:
+/// - OncePerStep, the default: bodies are slow or fast by their reach in a pass,
+///   Δt (|v'| + |ω| ρ) with ρ the half diagonal, against ImpulseParams::exactReach.
+///   - Pairs of two slow bodies: one narrow phase per step at the current poses, each body's
+///     margin widened by ImpulseParams::slowWidening (more than a slow body can move); every
+///     pass then leaves them where they are and predicts the depth of each cached contact point
+///     at the predicted poses by a Taylor expansion in the displacement:
 ///
 ///         depth' = depth + n · (d_a(p) - d_b(p)),
 ///         d(p) = Δt (v' + ω × r) + ½ Δt² ω × (ω × r),   r = p - x,
 ///
 ///     exact for translation and off by O(Δt³ |ω|³ ρ / 6) for rotation, below 1e-7 ℓ under the
-///     default exactReach. A contact joins the pass when one of its points has depth' > -margin,
-///     the criterion of EveryPass; its point is the mean of those points.
+///     default exactReach. A contact joins the pass when one of its points has
+///     depth' > -margin, the criterion of EveryPass; its point is the mean of those points.
+///   - Pairs with a fast body: as written. Fast bodies move to their predicted poses and a broad
+///     and narrow phase at those poses finds their contacts, every pass.
 ///
-///   Speculative contacts (Catto, "Speculative Contacts", GDC 2013) make the same prediction.
-///   On a resting stack every body is slow and a step costs one narrow phase instead of one
-///   per pass (16 with the default iterations), which was most of its cost; an impact still
-///   gets the exact narrow phase, pass after pass, for the pairs of the bodies that move fast.
+///   Contacts of both kinds are ordered by pair, as EveryPass orders them. Speculative contacts
+///   (Catto, "Speculative Contacts", GDC 2013) make the same first-order prediction. On a
+///   resting stack every body is slow and a step costs one narrow phase instead of one per pass
+///   (16 with the default iterations), which was most of its cost; in an impact the fast bodies
+///   cost what they cost as written.
 ///
 ///   DEVIATION(A.2 RESOLVECOLLISIONS L2-L3, RESOLVECONTACTS L2-L3): slow bodies are not moved to
-///   their predicted poses. The cache is rebuilt whenever a body's reach outgrows its widened
-///   margin, or a body's mobility changes (a sleeping body wakes, \thesis{§4.5}), so no pair
-///   the exact prediction would find is missed. What differs: a slow pair's contact depth by
-///   the rotation error above, its impulse's lever arms by at most the reach of its bodies
-///   (exactReach ℓ, 1 % of the box's size by default), and a fast body's partner, if slow,
-///   stands where it is rather than up to exactReach ℓ further on.
+///   their predicted poses. The cache is rebuilt when a body's mobility changes (a sleeping
+///   body wakes, \thesis{§4.5}) and every step. What differs from EveryPass: a slow pair's
+///   depth by the rotation error above; the lever arms of its impulse by at most the reach of
+///   its bodies (exactReach ℓ, 1 % of a box's size by default); the manifold's points, which
+///   stay those found at the current pose; and a fast body's slow partner, which stands where
+///   it is rather than up to exactReach ℓ further on.
 #pragma once
 
 #include <array>
@@ -119,16 +121,24 @@ class ContactGathering {
   /// One cached pair: the contact as COLLIDE will see it and its manifold's points.
   struct CachedPair {
     ImpulseContact contact;        ///< bodies and the model's normal
-    Vec3 manifoldNormal;           ///< unit, a to b: the direction the depths are measured in
+    /// The manifold at the current pose (its normal, a to b, is the direction the depths are
+    /// measured in; its kind and normal name the face the normal model remembers).
+    ContactManifold manifold;
     std::array<CachedPoint, 4> points;
     int count;
   };
 
-  /// m: how far body i can move in a pass with its current velocities, Δt (|v'| + |ω| ρ).
+  /// m: how far a body moves in a pass with its current velocities, Δt (|v'| + |ω| ρ).
   double reach(const RigidBody& body, const Vec3& gravityStep, double dt) const;
-  /// Whether the cache still holds every pair a pass with these velocities could touch.
-  bool cacheCovers(const World& world, const Vec3& gravityStep, double dt) const;
-  void buildCache(World& world, const Vec3& gravityStep, double dt, double margin);
+  /// Whether the cache was built for bodies of the same mobility as the world's now.
+  bool cacheCovers(const World& world) const;
+  void buildCache(const World& world, const Vec3& gravityStep, double dt, double margin);
+  /// The Taylor-predicted contact of a cached pair of slow bodies; false when no point is
+  /// within the margin.
+  bool predictedContact(const World& world, const CachedPair& pair, const Vec3& gravityStep,
+                        double dt, double margin, ImpulseContact& contact) const;
+  /// The narrow phase of bodies i < j where they stand; false when they do not touch.
+  bool exactContact(const World& world, int i, int j, double margin, ImpulseContact& contact);
 
   ImpulseParams params_;
   ContactNormalTracker normals_;
@@ -137,8 +147,8 @@ class ContactGathering {
   std::vector<char> moved_;      ///< per body: moved to its predicted pose for this pass
   bool cached_ = false;
   std::vector<CachedPair> pairs_;
-  std::vector<double> widening_;  ///< m per body: the reach the cache allows for
   std::vector<char> immovable_;   ///< each body's mobility when the cache was built
+  std::vector<char> fast_;        ///< per body: fast when the cache was built, so not in it
   double cacheMargin_ = 0.0;
   long narrowPhases_ = 0;
 };

@@ -66,9 +66,21 @@ Vec3 ContactNormalTracker::signedDistanceNormal(const World& world,
   return sum.normalized();
 }
 
-ImpulseContact ContactNormalTracker::contactOf(const World& world, const ContactManifold& m) {
+void ContactNormalTracker::remember(const World& world, const ContactManifold& m) {
+  if (model_ != ContactNormalModel::PreviousClosestFace || m.kind == AxisKind::EdgeEdge) return;
+  // The face the manifold was built on, signed so that it points from a to b.
+  const bool onB = m.kind == AxisKind::FaceB;
+  const Mat3& R = world.bodies[onB ? m.b : m.a].R;
+  int axis = 0;
+  for (int i = 1; i < 3; ++i)
+    if (std::abs(R.col(i).dot(m.normal)) > std::abs(R.col(axis).dot(m.normal))) axis = i;
+  current_.push_back(PairFace{{m.a, m.b},
+                              FaceRef{onB, axis, R.col(axis).dot(m.normal) < 0.0 ? -1.0 : 1.0}, 0});
+}
+
+ImpulseContact ContactNormalTracker::contactOf(const World& world, const ContactManifold& m,
+                                               bool record) {
   ImpulseContact c{m.a, m.b, m.centroid(), m.normal, m.depth};
-  const std::pair<int, int> key(m.a, m.b);
   switch (model_) {
     case ContactNormalModel::SeparatingAxis:
       break;
@@ -76,16 +88,8 @@ ImpulseContact ContactNormalTracker::contactOf(const World& world, const Contact
       c.normal = signedDistanceNormal(world, m);
       break;
     case ContactNormalModel::PreviousClosestFace: {
-      if (m.kind != AxisKind::EdgeEdge) {
-        // Remember the face the manifold was built on, signed so that it points from a to b.
-        const bool onB = m.kind == AxisKind::FaceB;
-        const Mat3& R = world.bodies[onB ? m.b : m.a].R;
-        int axis = 0;
-        for (int i = 1; i < 3; ++i)
-          if (std::abs(R.col(i).dot(m.normal)) > std::abs(R.col(axis).dot(m.normal))) axis = i;
-        current_.push_back(
-            PairFace{key, FaceRef{onB, axis, R.col(axis).dot(m.normal) < 0.0 ? -1.0 : 1.0}, 0});
-      }
+      if (record) remember(world, m);
+      const std::pair<int, int> key(m.a, m.b);
       const auto previous = std::lower_bound(
           previous_.begin(), previous_.end(), key,
           [](const PairFace& e, const std::pair<int, int>& k) { return e.pair < k; });

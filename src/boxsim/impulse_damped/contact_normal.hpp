@@ -41,8 +41,13 @@ class ContactNormalTracker {
   /// (when the pair touched then); the face found now is remembered for the next step.
   std::vector<ImpulseContact> contactsOf(const World& world,
                                          const std::vector<ContactManifold>& manifolds);
-  /// The contact of one manifold, as contactsOf gives it.
-  ImpulseContact contactOf(const World& world, const ContactManifold& m);
+  /// The contact of one manifold, as contactsOf gives it; with `record` false the manifold's
+  /// face is not remembered (see remember).
+  ImpulseContact contactOf(const World& world, const ContactManifold& m, bool record = true);
+  /// Remembers the face a touching pair's manifold was built on, for the next step
+  /// (PreviousClosestFace; the other models remember nothing). Called once per pass a pair is
+  /// gathered in; a pair remembered twice in a step keeps the later face.
+  void remember(const World& world, const ContactManifold& m);
 
   /// Ends a step: the faces recorded during it become "the previous step's" faces.
   void endStep();

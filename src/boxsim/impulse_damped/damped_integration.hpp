@@ -70,6 +70,8 @@ class DampedIntegrationStepper final : public Stepper {
   const std::vector<char>& asleep() const { return sleeping_.asleep(); }
   /// The generator and counter of visual plausibility (\thesis{§4.2}).
   const VisualPlausibility& plausibility() const { return plausibility_; }
+  /// Narrow phases the contact gathering has run (ContactGathering::narrowPhases).
+  long narrowPhases() const { return gathering_.narrowPhases(); }
 
  private:
   DampedIntegrationParams params_;

@@ -62,19 +62,16 @@ struct ImpulseParams {
   /// How the passes gather contacts. OncePerStep, the default, runs one narrow phase per step
   /// instead of one per pass (contact_gathering.hpp states the deviation and its error bound).
   ContactGatheringMode gathering = ContactGatheringMode::OncePerStep;
-  /// Unitless, >= 1 (OncePerStep): the contact cache allows each body to move this many times
-  /// as far as its velocities at the cache's build would take it in a step, so the velocity
-  /// changes of the passes that follow rarely force a rebuild. 2: a resting body's velocity
-  /// changes by about g Δt per step, its reach by g Δt²; doubling covers that.
-  double wideningFactor = 2.0;
-  /// In units of ℓ, >= 0 (OncePerStep): the least widening of a movable body's margin, so a body
-  /// at rest, whose reach is zero until gravity acts, keeps the neighbours it will press on.
-  /// 0.05 ℓ: 2.5 cm for unit cubes, ten times the g Δt² a resting box moves in a 60 Hz step.
-  double minWidening = 0.05;
-  /// In units of ℓ, >= 0 (OncePerStep): a body whose reach in a step, Δt (|v'| + |ω| ρ), exceeds
-  /// this is moved to its predicted pose and its pairs get the exact narrow phase every pass;
-  /// slower pairs use the Taylor prediction. 0.02 ℓ: 1 cm for unit cubes, a speed of 0.6 m/s at
-  /// 60 Hz, above the 2 g Δt (0.33 m/s) a resting box chatters with, far below an impact.
+  /// In units of ℓ, >= exactReach (OncePerStep): the margin of each movable body is widened by
+  /// this when the step's contacts of slow bodies are cached, so that pairs a slow body can
+  /// reach in the step are cached too. 0.05 ℓ: 2.5 cm for unit cubes, ten times the g Δt² a
+  /// resting box moves in a 60 Hz step.
+  double slowWidening = 0.05;
+  /// In units of ℓ, >= 0 (OncePerStep): a body whose reach in a pass, Δt (|v'| + |ω| ρ), exceeds
+  /// this is moved to its predicted pose and its pairs get the exact broad and narrow phase
+  /// every pass; pairs of slower bodies use the Taylor prediction. 0.02 ℓ: 1 cm for unit cubes,
+  /// a speed of 0.6 m/s at 60 Hz, above the 2 g Δt (0.33 m/s) a resting box chatters with,
+  /// far below an impact.
   double exactReach = 0.02;
 };
 

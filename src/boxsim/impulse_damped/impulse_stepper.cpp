@@ -22,8 +22,7 @@ std::map<std::string, std::string> ImpulseStepper::parameters() const {
           {"contact_normal", contactNormalModelName(params_.impulse.normalModel)},
           {"contact_margin_per_l", shortestText(params_.impulse.contactMargin)},
           {"contact_gathering", contactGatheringName(params_.impulse.gathering)},
-          {"widening_factor", shortestText(params_.impulse.wideningFactor)},
-          {"min_widening_per_l", shortestText(params_.impulse.minWidening)},
+          {"slow_widening_per_l", shortestText(params_.impulse.slowWidening)},
           {"exact_reach_per_l", shortestText(params_.impulse.exactReach)},
           {"shock_propagation", params_.shockPropagation ? "on" : "off"}};
 }
