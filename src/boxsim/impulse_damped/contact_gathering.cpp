@@ -12,14 +12,6 @@
 
 namespace boxsim {
 
-namespace {
-/// n · (ω × (ω × r)), m/s²: the centripetal acceleration of a point turning with the body, along
-/// n. Its Δt²/2 term keeps a tumbling box's corner on its arc instead of the arc's tangent,
-/// which at 7 rad/s would wrongly dip a corner of a unit cube 6 mm into the ground.
-double centripetal(const Vec3& omega, const Vec3& r, const Vec3& n) {
-  return n.dot(omega) * omega.dot(r) - omega.squaredNorm() * n.dot(r);
-}
-}  // namespace
 
 std::string contactGatheringName(ContactGatheringMode mode) {
   switch (mode) {
@@ -125,10 +117,13 @@ void ContactGathering::buildCache(const World& world, const Vec3& gravityStep, d
     const Vec3& xa = world.bodies[i].s.x;
     const Vec3& xb = world.bodies[j].s.x;
     // The normal model's choice now; its face is remembered only in the passes the pair touches.
-    CachedPair pair{normals_.contactOf(world, m, false), m, {}, 0};
+    CachedPair pair{normals_.contactOf(world, m, false), m, {}, 0, false};
     for (int k = 0; k < m.count; ++k) {
       const ContactPoint& p = m.points[k];
-      pair.points[pair.count++] = CachedPoint{p.position, p.depth, p.position - xa, p.position - xb};
+      const Vec3 ra = p.position - xa, rb = p.position - xb;
+      pair.points[pair.count++] = CachedPoint{p.position, p.depth,       ra,          rb,
+                                              ra.cross(m.normal), rb.cross(m.normal),
+                                              m.normal.dot(ra),   m.normal.dot(rb)};
     }
     pairs_.push_back(pair);
   }
@@ -146,15 +141,19 @@ bool ContactGathering::predictedContact(const World& world, const CachedPair& pa
   const Vec3 ub = b.immovable ? b.v : Vec3(b.v + gravityStep);
   const Vec3& n = pair.manifold.normal;
   const double linear = n.dot(ua - ub);
+  // n · (ω × (ω × r)) = (n · ω)(ω · r) - |ω|² (n · r), with n · r cached per point.
+  const double nwa = n.dot(a.omega), nwb = n.dot(b.omega);
+  const double wa2 = a.omega.squaredNorm(), wb2 = b.omega.squaredNorm();
   Vec3 sum = Vec3::Zero();
   int kept = 0;
   double deepest = 0.0;
   for (int i = 0; i < pair.count; ++i) {
     const CachedPoint& p = pair.points[i];
-    const double depth = p.depth + dt * (linear + n.dot(a.omega.cross(p.ra)) -
-                                         n.dot(b.omega.cross(p.rb))) +
-                         (0.5 * dt * dt) * (centripetal(a.omega, p.ra, n) -
-                                            centripetal(b.omega, p.rb, n));
+    // n · (ω × r) = ω · (r × n).
+    const double turning = a.omega.dot(p.raCrossN) - b.omega.dot(p.rbCrossN);
+    const double centripetal = (nwa * a.omega.dot(p.ra) - wa2 * p.nDotRa) -
+                               (nwb * b.omega.dot(p.rb) - wb2 * p.nDotRb);
+    const double depth = p.depth + dt * (linear + turning) + (0.5 * dt * dt) * centripetal;
     if (depth <= -margin) continue;
     deepest = kept == 0 ? depth : std::max(deepest, depth);
     sum += p.position;
@@ -216,19 +215,25 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
   contacts_.clear();
   ImpulseContact c;
   std::size_t f = 0;
-  for (const CachedPair& pair : pairs_) {
+  for (CachedPair& pair : pairs_) {
     const std::pair<int, int> key(pair.contact.a, pair.contact.b);
     for (; f < fastPairs.size() && fastPairs[f] < key; ++f)
       if (exactContact(world, fastPairs[f].first, fastPairs[f].second, margin, c))
         contacts_.push_back(c);
     // No point to predict from: the narrow phase where the two slow bodies stand.
-    // A body that turned fast in this step: its pairs are among the fast ones now.
-    if (moved_[key.first] || moved_[key.second]) continue;
+    // A body that turned fast in this step: its pairs are among the fast ones now, and what
+    // they remember of the face comes after anything remembered before.
+    if (moved_[key.first] || moved_[key.second]) {
+      pair.remembered = false;
+      continue;
+    }
     if (pair.count == 0) {
       if (exactContact(world, key.first, key.second, margin, c)) contacts_.push_back(c);
     } else if (predictedContact(world, pair, gravityStep, dt, margin, c)) {
-      // The bodies have not moved since the cache was built: its manifold names the face.
-      normals_.remember(world, pair.manifold);
+      // The bodies have not moved since the cache was built: its manifold names the face, the
+      // same in every pass, so remembering it once is remembering it every pass.
+      if (!pair.remembered) normals_.remember(world, pair.manifold);
+      pair.remembered = true;
       contacts_.push_back(c);
     }
   }

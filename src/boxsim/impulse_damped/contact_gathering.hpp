@@ -117,6 +117,10 @@ class ContactGathering {
     double depth;      ///< m, along the manifold normal at the current pose
     Vec3 ra;           ///< p - x_a, m
     Vec3 rb;           ///< p - x_b, m
+    Vec3 raCrossN;     ///< r_a × n, m
+    Vec3 rbCrossN;     ///< r_b × n, m
+    double nDotRa;     ///< n · r_a, m
+    double nDotRb;     ///< n · r_b, m
   };
   /// One cached pair: the contact as COLLIDE will see it and its manifold's points.
   struct CachedPair {
@@ -126,6 +130,7 @@ class ContactGathering {
     ContactManifold manifold;
     std::array<CachedPoint, 4> points;
     int count;
+    bool remembered;  ///< its face was handed to the normal model since it last was fast
   };
 
   /// m: how far a body moves in a pass with its current velocities, Δt (|v'| + |ω| ρ).

@@ -15,7 +15,7 @@ namespace {
 void addVelocity(RigidBody& body, const Vec3& deltaV) {
   if (body.immovable) return;
   body.s.P += body.mass * deltaV;
-  body.updateVelocities();
+  body.v = body.invMass * body.s.P;  // L is unchanged, so ω = I⁻¹ L is too
 }
 
 /// The velocity COLLIDE adds for the gravity trick (A.2 L1-L4): g Δt or zero.
