@@ -60,8 +60,13 @@ std::vector<std::pair<int, int>> candidatePairs(const World& world, double margi
 
 std::vector<ContactManifold> findContacts(const World& world, double margin,
                                           BroadPhase kind) {
+  const std::vector<std::pair<int, int>> pairs = candidatePairs(world, margin, kind);
+  // Room for every candidate at once: in the scenes that make this costly, stacks at rest,
+  // nearly every candidate touches, and growing the vector step by step would copy each
+  // manifold several times.
   std::vector<ContactManifold> contacts;
-  for (const auto& [i, j] : candidatePairs(world, margin, kind)) {
+  contacts.reserve(pairs.size());
+  for (const auto& [i, j] : pairs) {
     ContactManifold m = collideBoxes(Obb::of(world.bodies[i]), Obb::of(world.bodies[j]), margin);
     if (m.count == 0) continue;
     m.a = i;

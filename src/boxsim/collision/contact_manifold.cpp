@@ -60,40 +60,64 @@ constexpr double kDepthTieFraction = 1e-9;
 
 /// A vertex of the clipped polygon, with the two lines (incident edge or reference side plane,
 /// labels as in the file comment) that meet there: the one before it and the one after it.
+/// No default member values: clipping writes a vertex before anything reads it, and the
+/// polygons live on the stack of every face contact, where zeroing them would cost time.
 struct ClipVertex {
-  Vec3 p = Vec3::Zero();
-  int inLabel = 0;
-  int outLabel = 0;
+  Vec3 p;
+  int inLabel;
+  int outLabel;
 };
 
 /// A convex polygon of at most 8 vertices: a quad clipped by 4 planes gains at most one vertex
-/// per plane.
+/// per plane. Only the first `count` vertices are set.
 struct ClipPolygon {
-  std::array<ClipVertex, 8> v{};
+  std::array<ClipVertex, 8> v;
   int count = 0;
 };
 
-/// Sutherland-Hodgman step: keeps the part of `in` where n . p <= offset. A crossing is made
-/// only for strictly opposite signs, so a vertex on the plane is never duplicated.
-ClipPolygon clipToPlane(const ClipPolygon& in, const Vec3& n, double offset, int planeLabel) {
-  ClipPolygon out;
+/// Sutherland-Hodgman step: keeps the part of `in` where n . p <= offset, written to `out`
+/// (not `in`). A crossing is made only for strictly opposite signs, so a vertex on the plane
+/// is never duplicated. Returns false, leaving `out` untouched, when every vertex is already
+/// inside: the clipped polygon would be `in` itself, vertex for vertex, so the caller keeps
+/// using `in` and no copy is made (the usual case for most side planes of a resting contact).
+bool clipToPlane(const ClipPolygon& in, ClipPolygon& out, const Vec3& n, double offset,
+                 int planeLabel) {
+  // Each vertex's signed distance once, not once as P and again as Q: the same expression on
+  // the same point, hence the same bits.
+  std::array<double, 8> d;
+  bool allInside = true;
   for (int k = 0; k < in.count; ++k) {
+    d[k] = n.dot(in.v[k].p) - offset;
+    allInside = allInside && d[k] <= 0.0;
+  }
+  if (allInside) return false;
+
+  out.count = 0;
+  for (int k = 0; k < in.count; ++k) {
+    const int next = k + 1 < in.count ? k + 1 : 0;
     const ClipVertex& P = in.v[k];
-    const ClipVertex& Q = in.v[(k + 1) % in.count];
-    const double dP = n.dot(P.p) - offset;
-    const double dQ = n.dot(Q.p) - offset;
+    const ClipVertex& Q = in.v[next];
+    const double dP = d[k];
+    const double dQ = d[next];
     if (dP <= 0.0) out.v[out.count++] = P;
     if ((dP < 0.0 && dQ > 0.0) || (dP > 0.0 && dQ < 0.0)) {
-      ClipVertex X;
+      ClipVertex& X = out.v[out.count++];
       X.p = P.p + (dP / (dP - dQ)) * (Q.p - P.p);
       // Leaving: the polygon goes on along the plane; entering: along the edge P-Q again.
       X.inLabel = dP < 0.0 ? P.outLabel : planeLabel;
       X.outLabel = dP < 0.0 ? planeLabel : P.outLabel;
-      out.v[out.count++] = X;
     }
   }
-  return out;
+  return true;
 }
+
+/// A kept point of a face contact before the reduction to four: ContactPoint's fields without
+/// its default values, so the 8 slots are not zeroed on every call.
+struct FacePoint {
+  Vec3 position;
+  double depth;
+  std::uint32_t featureId;
+};
 
 /// Area-like measure of triangle (a, b, q) seen along n: positive when counter-clockwise.
 double signedArea(const Vec3& a, const Vec3& b, const Vec3& q, const Vec3& n) {
@@ -106,7 +130,7 @@ double signedArea(const Vec3& a, const Vec3& b, const Vec3& q, const Vec3& n) {
 /// make the first index win every tie, so flush faces, whose depths differ only by rounding,
 /// keep the same points while the clip polygon keeps its shape. Returns the indices in
 /// increasing order, so the kept points stay in the clip polygon's cyclic order.
-std::array<int, 4> reduceToFour(const std::array<ContactPoint, 8>& pts, int count, const Vec3& n,
+std::array<int, 4> reduceToFour(const std::array<FacePoint, 8>& pts, int count, const Vec3& n,
                                 double depthTie) {
   std::array<bool, 8> used{};
   auto take = [&](int k) { used[k] = true; return k; };
@@ -158,8 +182,9 @@ std::array<int, 4> reduceToFour(const std::array<ContactPoint, 8>& pts, int coun
 }
 
 /// Face contact: clip the incident face of one box against the reference face of the other.
-ContactManifold faceContact(const Obb& a, const Obb& b, const SeparatingAxisResult& sat,
-                            double margin, ContactManifold m) {
+/// Fills the points, count and depth of `m`, whose other fields the caller has set.
+void faceContact(const Obb& a, const Obb& b, const SeparatingAxisResult& sat, double margin,
+                 ContactManifold& m) {
   const bool refIsA = sat.kind == AxisKind::FaceA;
   const Obb& ref = refIsA ? a : b;
   const Obb& inc = refIsA ? b : a;
@@ -170,11 +195,12 @@ ContactManifold faceContact(const Obb& a, const Obb& b, const SeparatingAxisResu
   const int refFace = 2 * refAxis + (refPlus ? 1 : 0);
 
   // Incident face: the other box's face whose outward normal is most anti-parallel to nRef.
+  const std::array<double, 3> incDot = {inc.axes.col(0).dot(nRef), inc.axes.col(1).dot(nRef),
+                                        inc.axes.col(2).dot(nRef)};
   int incAxis = 0;
   for (int k = 1; k < 3; ++k)
-    if (std::abs(inc.axes.col(k).dot(nRef)) > std::abs(inc.axes.col(incAxis).dot(nRef)))
-      incAxis = k;
-  const bool incPlus = inc.axes.col(incAxis).dot(nRef) < 0.0;
+    if (std::abs(incDot[k]) > std::abs(incDot[incAxis])) incAxis = k;
+  const bool incPlus = incDot[incAxis] < 0.0;
   const int incFace = 2 * incAxis + (incPlus ? 1 : 0);
 
   // The incident quad, vertex k between edges k-1 and k (file comment diagram).
@@ -183,13 +209,17 @@ ContactManifold faceContact(const Obb& a, const Obb& b, const SeparatingAxisResu
   const int iu = (incAxis + 1) % 3, iv = (incAxis + 2) % 3;
   const Vec3 incCenter = inc.center + (incPlus ? 1.0 : -1.0) * inc.halfExtents[incAxis] *
                                           inc.axes.col(incAxis);
-  ClipPolygon poly;
-  poly.count = 4;
+  // Two buffers the clip steps pass the polygon between, buffers[current] holding it, so no
+  // step copies the polygon by value.
+  std::array<ClipPolygon, 2> buffers;
+  int current = 0;
+  ClipPolygon& quad = buffers[0];
+  quad.count = 4;
   for (int k = 0; k < 4; ++k) {
-    poly.v[k].p = incCenter + kSignU[k] * inc.halfExtents[iu] * inc.axes.col(iu) +
+    quad.v[k].p = incCenter + kSignU[k] * inc.halfExtents[iu] * inc.axes.col(iu) +
                   kSignV[k] * inc.halfExtents[iv] * inc.axes.col(iv);
-    poly.v[k].inLabel = (k + 3) % 4;
-    poly.v[k].outLabel = k;
+    quad.v[k].inLabel = (k + 3) % 4;
+    quad.v[k].outLabel = k;
   }
 
   // Clip against the reference face's side planes, numbered like its edges: 0 +v, 1 -u,
@@ -201,41 +231,50 @@ ContactManifold faceContact(const Obb& a, const Obb& b, const SeparatingAxisResu
   const Vec3 v = ref.axes.col(rv);
   const double hu = ref.halfExtents[ru];
   const double hv = ref.halfExtents[rv];
-  poly = clipToPlane(poly, v, v.dot(refCenter) + hv, 4);
-  poly = clipToPlane(poly, Vec3(-u), -u.dot(refCenter) + hu, 5);
-  poly = clipToPlane(poly, Vec3(-v), -v.dot(refCenter) + hv, 6);
-  poly = clipToPlane(poly, u, u.dot(refCenter) + hu, 7);
+  const auto clip = [&](const Vec3& n, double offset, int planeLabel) {
+    if (clipToPlane(buffers[current], buffers[1 - current], n, offset, planeLabel))
+      current = 1 - current;
+  };
+  clip(v, v.dot(refCenter) + hv, 4);
+  clip(Vec3(-u), -u.dot(refCenter) + hu, 5);
+  clip(Vec3(-v), -v.dot(refCenter) + hv, 6);
+  clip(u, u.dot(refCenter) + hu, 7);
+  const ClipPolygon& poly = buffers[current];
 
   // Keep the points below the reference face, placed midway between the two surfaces.
   const std::uint32_t faceBits = (static_cast<std::uint32_t>(incFace) << 6) |
                                  (static_cast<std::uint32_t>(refFace) << 9) |
                                  ((refIsA ? 0u : 1u) << 12);
-  std::array<ContactPoint, 8> kept{};
+  std::array<FacePoint, 8> kept;
   int count = 0;
   for (int k = 0; k < poly.count; ++k) {
     const double depth = nRef.dot(refCenter - poly.v[k].p);
     if (depth <= -margin) continue;
-    ContactPoint& c = kept[count++];
+    FacePoint& c = kept[count++];
     c.depth = depth;
     c.position = poly.v[k].p + (0.5 * depth) * nRef;
     c.featureId = faceBits | static_cast<std::uint32_t>(poly.v[k].inLabel) |
                   (static_cast<std::uint32_t>(poly.v[k].outLabel) << 3);
   }
 
+  const auto put = [&m](int slot, const FacePoint& c) {
+    m.points[slot].position = c.position;
+    m.points[slot].depth = c.depth;
+    m.points[slot].featureId = c.featureId;
+  };
   if (count > 4) {
     const double depthTie = kDepthTieFraction * std::max(hu, hv);
     const std::array<int, 4> keep = reduceToFour(kept, count, nRef, depthTie);
-    for (int k = 0; k < 4; ++k) m.points[k] = kept[keep[k]];
+    for (int k = 0; k < 4; ++k) put(k, kept[keep[k]]);
     count = 4;
   } else {
-    for (int k = 0; k < count; ++k) m.points[k] = kept[k];
+    for (int k = 0; k < count; ++k) put(k, kept[k]);
   }
   m.count = count;
   if (count > 0) {
     m.depth = m.points[0].depth;
     for (int k = 1; k < count; ++k) m.depth = std::max(m.depth, m.points[k].depth);
   }
-  return m;
 }
 
 /// The edge of `box` along axis d farthest along direction n (its support edge), as centre
@@ -252,9 +291,9 @@ void supportEdge(const Obb& box, int d, const Vec3& n, Vec3& mid, std::uint32_t&
 }
 
 /// Edge-edge contact: the midpoint of the closest points of the support edges of A (along
-/// +normal) and B (along -normal).
-ContactManifold edgeContact(const Obb& a, const Obb& b, const SeparatingAxisResult& sat,
-                            ContactManifold m) {
+/// +normal) and B (along -normal). Fills the point, count and depth of `m`.
+void edgeContact(const Obb& a, const Obb& b, const SeparatingAxisResult& sat,
+                 ContactManifold& m) {
   Vec3 pA, pB;
   std::uint32_t edgeA = 0, edgeB = 0;
   supportEdge(a, sat.indexA, sat.normal, pA, edgeA);
@@ -283,7 +322,6 @@ ContactManifold edgeContact(const Obb& a, const Obb& b, const SeparatingAxisResu
   point.featureId = kEdgeEdgeContact | edgeA | (edgeB << 4);
   m.count = 1;
   m.depth = sat.depth;
-  return m;
 }
 
 }  // namespace
@@ -295,8 +333,11 @@ ContactManifold buildContactManifold(const Obb& a, const Obb& b, const Separatin
   m.kind = sat.kind;
   m.depth = sat.depth;
   if (sat.depth <= -margin) return m;
-  if (sat.kind == AxisKind::EdgeEdge) return edgeContact(a, b, sat, m);
-  return faceContact(a, b, sat, margin, m);
+  if (sat.kind == AxisKind::EdgeEdge)
+    edgeContact(a, b, sat, m);
+  else
+    faceContact(a, b, sat, margin, m);
+  return m;
 }
 
 ContactManifold collideBoxes(const Obb& a, const Obb& b, double margin,

@@ -12,6 +12,13 @@
 /// (B, A) evaluates the same floating-point sums with the operands commuted, which IEEE
 /// arithmetic rounds identically; ties are broken by geometry (face area, the unsigned axis),
 /// never by which box came first. Hence the same depth bit for bit and the exact negated normal.
+///
+/// Cost. Most pairs a step tests are boxes resting face on face, so the work is arranged for
+/// them: every axis gets its depth, but a normal (three divisions for an edge axis) and the
+/// tie-break data (face area, height) are formed only for the few axes that can still win,
+/// and an edge axis whose depth provably cannot win is not divided out at all. None of this
+/// changes a result bit: every value that reaches the result, or a comparison that picks it,
+/// is computed by the same expression as in the plain loop over all 15 axes.
 #include "boxsim/collision/separating_axis.hpp"
 
 #include <algorithm>
@@ -21,15 +28,30 @@
 namespace boxsim {
 namespace {
 
-/// One tested axis.
+/// A face axis in the running for the least depth, with everything its tie-break looks at.
 struct AxisCandidate {
   double depth = 0.0;       ///< m, rA + rB - |L . D| with L a unit vector
   Vec3 normal = Vec3::Zero();  ///< unit, from A to B
   AxisKind kind = AxisKind::FaceA;
   int indexA = 0;
   int indexB = 0;
-  double faceArea = 0.0;    ///< m^2, area of the face whose normal this is (face axes only)
-  double height = 0.0;      ///< m, the face's box centre along the unsigned axis (face axes only)
+  double faceArea = 0.0;    ///< m^2, area of the face whose normal this is
+  double height = 0.0;      ///< m, the face's box centre along the unsigned axis
+};
+
+/// An edge-edge axis L = a_i x b_j (not normalised) with its depth. The unit normal costs
+/// three divisions and is needed only to break an exact tie of depths or for the answer, so
+/// it is formed on demand, from the same L, |L| and sign as the depth.
+struct EdgeAxis {
+  double depth = 0.0;    ///< m, ((rA + rB) - |L . D|) / |L|
+  Vec3 L = Vec3::Zero();  ///< a_i x b_j in world space
+  double length = 0.0;   ///< |L|, >= parallelCutoff
+  double dist = 0.0;     ///< L . D, its sign orients the normal from A to B
+  int indexA = 0;
+  int indexB = 0;
+
+  /// Unit normal from A to B.
+  Vec3 normal() const { return dist >= 0.0 ? Vec3(L / length) : Vec3(-L / length); }
 };
 
 /// The axis direction with its sign removed: the first nonzero component is made positive.
@@ -62,13 +84,39 @@ bool betterFace(const AxisCandidate& p, const AxisCandidate& q) {
   return p.indexA + p.indexB < q.indexA + q.indexB;
 }
 
-/// Least depth first, then the unsigned axis, then the edge indices.
-bool betterEdge(const AxisCandidate& p, const AxisCandidate& q) {
+/// Least depth first, then the unsigned axis, then the edge indices. The normals are formed
+/// only on an exact tie of depths.
+bool betterEdge(const EdgeAxis& p, const EdgeAxis& q) {
   if (p.depth != q.depth) return p.depth < q.depth;
-  if (axisBefore(p.normal, q.normal) || axisBefore(q.normal, p.normal))
-    return axisBefore(p.normal, q.normal);
+  const Vec3 np = p.normal();
+  const Vec3 nq = q.normal();
+  if (axisBefore(np, nq) || axisBefore(nq, np)) return axisBefore(np, nq);
   if (p.indexA != q.indexA) return p.indexA < q.indexA;
   return p.indexB < q.indexB;
+}
+
+/// Face axis k of the test (0..2: face axis k of A, 3..5: face axis k-3 of B) with its
+/// tie-break data, given its depth and dist = axis . D.
+AxisCandidate faceCandidate(const Obb& a, const Obb& b, int k, double depth, double dist) {
+  AxisCandidate f;
+  f.depth = depth;
+  if (k < 3) {
+    const int i1 = (k + 1) % 3, i2 = (k + 2) % 3;
+    // dist == 0 (concentric boxes): A's axis as is, B's axis negated, so a swap still negates.
+    f.normal = dist >= 0.0 ? Vec3(a.axes.col(k)) : Vec3(-a.axes.col(k));
+    f.kind = AxisKind::FaceA;
+    f.indexA = k;
+    f.faceArea = 4.0 * a.halfExtents[i1] * a.halfExtents[i2];
+    f.height = unsignedAxis(f.normal).dot(a.center);
+  } else {
+    const int j = k - 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+    f.normal = dist > 0.0 ? Vec3(b.axes.col(j)) : Vec3(-b.axes.col(j));
+    f.kind = AxisKind::FaceB;
+    f.indexB = j;
+    f.faceArea = 4.0 * b.halfExtents[j1] * b.halfExtents[j2];
+    f.height = unsignedAxis(f.normal).dot(b.center);
+  }
+  return f;
 }
 
 }  // namespace
@@ -90,56 +138,84 @@ SeparatingAxisResult separatingAxisTest(const Obb& a, const Obb& b,
   const Mat3 absCEdge = absC.array() + params.absCEpsilon;
 
   // --- Face axes of A and of B (Eberly's table of the 15 tests, rows L = A_i, L = B_j) ---
-  std::array<AxisCandidate, 6> faces;
+  // Depths only: the normal and the tie-break data are formed below for the tied faces alone.
+  std::array<double, 6> faceDepth;
+  std::array<double, 6> faceDist;  // axis . D, whose sign orients the face normal
   for (int i = 0; i < 3; ++i) {
-    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
     const double rA = ea[i];
     const double rB = eb[0] * absC(i, 0) + eb[1] * absC(i, 1) + eb[2] * absC(i, 2);
-    const double dist = a.axes.col(i).dot(D);
-    AxisCandidate& f = faces[i];
-    f.depth = (rA + rB) - std::abs(dist);
-    // dist == 0 (concentric boxes): A's axis as is, B's axis negated, so a swap still negates.
-    f.normal = dist >= 0.0 ? Vec3(a.axes.col(i)) : Vec3(-a.axes.col(i));
-    f.kind = AxisKind::FaceA;
-    f.indexA = i;
-    f.faceArea = 4.0 * ea[i1] * ea[i2];
-    f.height = unsignedAxis(f.normal).dot(a.center);
+    faceDist[i] = a.axes.col(i).dot(D);
+    faceDepth[i] = (rA + rB) - std::abs(faceDist[i]);
   }
   for (int j = 0; j < 3; ++j) {
-    const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
     const double rA = ea[0] * absC(0, j) + ea[1] * absC(1, j) + ea[2] * absC(2, j);
     const double rB = eb[j];
-    const double dist = b.axes.col(j).dot(D);
-    AxisCandidate& f = faces[3 + j];
-    f.depth = (rA + rB) - std::abs(dist);
-    f.normal = dist > 0.0 ? Vec3(b.axes.col(j)) : Vec3(-b.axes.col(j));
-    f.kind = AxisKind::FaceB;
-    f.indexB = j;
-    f.faceArea = 4.0 * eb[j1] * eb[j2];
-    f.height = unsignedAxis(f.normal).dot(b.center);
+    faceDist[3 + j] = b.axes.col(j).dot(D);
+    faceDepth[3 + j] = (rA + rB) - std::abs(faceDist[3 + j]);
   }
+
+  // --- The best face: least depth, near ties to the larger face ---
+  double faceMin = faceDepth[0];
+  for (const double depth : faceDepth) faceMin = std::min(faceMin, depth);
+  const double tieWidth = params.faceTieTolerance * (ea.maxCoeff() + eb.maxCoeff());
+  // Only the tied faces get a candidate (normal, area, height), compared in index order.
+  // (No face is tied only if the depths are NaN; the answer is then meaningless anyway.)
+  AxisCandidate face;
+  bool haveFace = false;
+  for (int k = 0; k < 6; ++k) {
+    // A tie never crosses depth 0, so "intersecting" and "depth > 0" keep meaning the same.
+    const bool tied = faceDepth[k] <= faceMin + tieWidth && (faceDepth[k] > 0.0) == (faceMin > 0.0);
+    if (!tied) continue;
+    const AxisCandidate f = faceCandidate(a, b, k, faceDepth[k], faceDist[k]);
+    if (!haveFace || betterFace(f, face)) face = f;
+    haveFace = true;
+  }
+  // The two bars an edge axis must get under to be chosen instead of the face (see "Face or
+  // edge" below): edgeBar when the boxes overlap, face.depth when they do not.
+  const double edgeBar = face.depth * (1.0 - params.edgeBias);
 
   // --- Edge-edge axes L = a_i x b_j (the same table, rows L = A_i x B_j) ---
   bool haveEdge = false;
-  AxisCandidate edge;
+  EdgeAxis edge;
+  // Unrolled, so every index below is a constant: the loop bookkeeping and the "% 3" cost
+  // more than the arithmetic of an axis that is not divided out.
+#pragma GCC unroll 3
   for (int i = 0; i < 3; ++i) {
     const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+#pragma GCC unroll 3
     for (int j = 0; j < 3; ++j) {
       const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
       // The cross product in world space: the swapped call computes b_j x a_i, the exact
       // negation, so |L| and |L . D| agree bit for bit.
       const Vec3 L = a.axes.col(i).cross(b.axes.col(j));
-      const double length = L.norm();
-      // Near-parallel edges: L is mostly rounding error and the face axes already decide.
-      if (length < params.parallelCutoff) continue;
       const double rA = ea[i1] * absCEdge(i2, j) + ea[i2] * absCEdge(i1, j);
       const double rB = eb[j1] * absCEdge(i, j2) + eb[j2] * absCEdge(i, j1);
       const double dist = L.dot(D);
-      AxisCandidate e;
-      // Dividing by |L| turns Eberly's unnormalised separation into metres.
-      e.depth = ((rA + rB) - std::abs(dist)) / length;
-      e.normal = dist >= 0.0 ? Vec3(L / length) : Vec3(-L / length);
-      e.kind = AxisKind::EdgeEdge;
+      // Eberly's unnormalised separation; dividing by |L| turns it into metres.
+      const double overlap = (rA + rB) - std::abs(dist);
+      const double lengthSquared = L.squaredNorm();  // |L| = sqrt of this, as L.norm() does
+
+      // An axis that provably loses to the face is not divided out (no root, no division).
+      // lengthSquared <= 1 makes |L| <= 1, and then, overlap being a positive double and
+      // rounding monotone, the rounded depth overlap / |L| is >= overlap. So overlap > 0 and
+      // overlap at least both bars mean a positive depth, which cannot make "intersecting"
+      // false, and one that neither comparison under "Face or edge" prefers to the face.
+      // Leaving the axis out changes nothing: had it been the best edge, the best of the rest
+      // is no better and loses too. (Axes below parallelCutoff are left out anyway.) The first
+      // axis to pass the cutoff is always evaluated, so the running best starts from the same
+      // axis as in the plain loop, which keeps the answer the same even for NaN depths, which
+      // win no comparison.
+      if (haveEdge && lengthSquared <= 1.0 && overlap > 0.0 && overlap >= edgeBar &&
+          overlap >= face.depth)
+        continue;
+      const double length = std::sqrt(lengthSquared);
+      // Near-parallel edges: L is mostly rounding error and the face axes already decide.
+      if (length < params.parallelCutoff) continue;
+      EdgeAxis e;
+      e.depth = overlap / length;
+      e.L = L;
+      e.length = length;
+      e.dist = dist;
       e.indexA = i;
       e.indexB = j;
       if (!haveEdge || betterEdge(e, edge)) edge = e;
@@ -147,39 +223,30 @@ SeparatingAxisResult separatingAxisTest(const Obb& a, const Obb& b,
     }
   }
 
-  // --- The best face: least depth, near ties to the larger face ---
-  double faceMin = faces[0].depth;
-  for (const AxisCandidate& f : faces) faceMin = std::min(faceMin, f.depth);
-  const double tieWidth = params.faceTieTolerance * (ea.maxCoeff() + eb.maxCoeff());
-  int best = -1;
-  for (int k = 0; k < 6; ++k) {
-    const AxisCandidate& f = faces[k];
-    // A tie never crosses depth 0, so "intersecting" and "depth > 0" keep meaning the same.
-    const bool tied = f.depth <= faceMin + tieWidth && (f.depth > 0.0) == (faceMin > 0.0);
-    if (tied && (best < 0 || betterFace(f, faces[best]))) best = k;
-  }
-  const AxisCandidate& face = faces[best];
-
   // --- Face or edge ---
   const double leastDepth = haveEdge ? std::min(faceMin, edge.depth) : faceMin;
   const bool intersecting = leastDepth > 0.0;
-  bool useEdge = false;
-  if (haveEdge) {
-    // Overlapping: an edge axis must beat the face by the relative bias, so flush faces,
-    // whose edge axes coincide with the face normal, give face contacts. Separated: the
-    // largest gap wins outright, because -depth must be the largest gap.
-    useEdge = intersecting ? edge.depth < face.depth * (1.0 - params.edgeBias)
-                           : edge.depth < face.depth;
-  }
-  const AxisCandidate& chosen = useEdge ? edge : face;
+  // Overlapping: an edge axis must beat the face by the relative bias, so flush faces, whose
+  // edge axes coincide with the face normal, give face contacts. Separated: the largest gap
+  // wins outright, because -depth must be the largest gap.
+  const bool useEdge =
+      haveEdge && (intersecting ? edge.depth < edgeBar : edge.depth < face.depth);
 
   SeparatingAxisResult result;
   result.intersecting = intersecting;
-  result.depth = chosen.depth;
-  result.normal = chosen.normal;
-  result.kind = chosen.kind;
-  result.indexA = chosen.indexA;
-  result.indexB = chosen.indexB;
+  if (useEdge) {
+    result.depth = edge.depth;
+    result.normal = edge.normal();
+    result.kind = AxisKind::EdgeEdge;
+    result.indexA = edge.indexA;
+    result.indexB = edge.indexB;
+  } else {
+    result.depth = face.depth;
+    result.normal = face.normal;
+    result.kind = face.kind;
+    result.indexA = face.indexA;
+    result.indexB = face.indexB;
+  }
   return result;
 }
 

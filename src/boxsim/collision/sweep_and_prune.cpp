@@ -78,6 +78,7 @@ std::vector<std::pair<int, int>> sweepAndPrunePairs(const World& world, double m
   for (const RigidBody& b : world.bodies)
     if (!b.immovable) largestMovable = std::max(largestMovable, b.halfExtents.maxCoeff());
   std::vector<int> direct, swept;
+  swept.reserve(n);
   std::vector<char> isDirect(n, 0);
   for (int i = 0; i < n; ++i) {
     const RigidBody& b = world.bodies[i];
@@ -86,7 +87,10 @@ std::vector<std::pair<int, int>> sweepAndPrunePairs(const World& world, double m
     (isDirect[i] ? direct : swept).push_back(i);
   }
 
+  // Bodies resting in a stack touch a handful of neighbours each, so 4 n pairs is usually
+  // room enough for all of them from the start (it is only a starting capacity).
   std::vector<std::pair<int, int>> pairs;
+  pairs.reserve(4 * static_cast<std::size_t>(n));
   for (int d : direct) {
     for (int j = 0; j < n; ++j) {
       // A pair of two direct bodies is tested once, from its lower index.
