@@ -11,7 +11,7 @@ do for [kind in "png svg"] {
   set style fill solid 0.8 border -1
   set boxwidth 0.7
   set grid ytics
-  set xtics rotate by -30 nomirror
+  set xtics rotate by -30 nomirror noenhanced
   set yrange [0:*]
   set ylabel "sign changes per body and second"
   plot data using 1:3:(int($1) % 2 == 0 ? 0xd62728 : 0x1f77b4):xtic(2) with boxes lc rgb variable notitle

@@ -29,6 +29,8 @@ constexpr std::array<int, 10> kBodyColours = {0x4c72b0, 0xdd8452, 0x55a868, 0xc4
                                               0x937860, 0xda8bc3, 0x64b5cd, 0xccb974, 0x7f3c8d};
 constexpr int kImmovableColour = 0x8d939c;  // walls, steps and other small immovable boxes
 constexpr int kGroundColour = 0xf0f0f0;     // before shading
+// An immovable body this many times wider than the largest moving box is a floor.
+constexpr double kFloorWidthRatio = 20.0;
 constexpr int kShadowColour = 0xcacaca;
 
 // The share of the plot area (after the text bands and margins) the scene may fill, so the
@@ -314,7 +316,9 @@ SceneDrawer::SceneDrawer(const Trajectory& trajectory, double groundHalfSize)
   squareHalf_ = groundHalfSize > 0.0
                     ? groundHalfSize
                     : 0.5 * (high - low).maxCoeff() + 2.0 * largestHalfExtent;
-  // An immovable body that does not fit in the square is a floor: only its top face is drawn.
+  // An immovable body that does not fit in the square, or is far wider than any moving box, is
+  // a floor: only its top face is drawn. (Boxes that slide off a floor widen the square past
+  // it; drawn as a box, that floor's sides then covered the picture in dark grey.)
   huge_.assign(bodyCount, false);
   for (std::size_t b = 0; b < bodyCount; ++b) {
     if (!trajectory.bodies[b].immovable || trajectory.frames.empty()) continue;
@@ -327,7 +331,8 @@ SceneDrawer::SceneDrawer(const Trajectory& trajectory, double groundHalfSize)
         bodyHigh = bodyHigh.cwiseMax(groundPoint(c));
       }
     }
-    huge_[b] = (bodyHigh - bodyLow).maxCoeff() > 2.0 * squareHalf_;
+    const double width = (bodyHigh - bodyLow).maxCoeff();
+    huge_[b] = width > 2.0 * squareHalf_ || width > kFloorWidthRatio * 2.0 * largestHalfExtent;
   }
 }
 
