@@ -105,6 +105,16 @@ double restingContactMargin(const World& world, double margin, double dt) {
   return margin + world.gravity.norm() * dt * dt;
 }
 
+std::map<std::string, std::string> impulseParameters(const ImpulseParams& params) {
+  return {{"collision_iterations", std::to_string(params.collisionIterations)},
+          {"contact_iterations", std::to_string(params.contactIterations)},
+          {"contact_normal", contactNormalModelName(params.normalModel)},
+          {"contact_margin_per_l", shortestText(params.contactMargin)},
+          {"contact_gathering", contactGatheringName(params.gathering)},
+          {"slow_widening_per_l", shortestText(params.slowWidening)},
+          {"exact_reach_per_l", shortestText(params.exactReach)}};
+}
+
 double smallestHalfExtent(const World& world) {
   double smallest = std::numeric_limits<double>::infinity();
   for (const RigidBody& b : world.bodies)

@@ -6,6 +6,8 @@
 #pragma once
 
 #include <functional>
+#include <map>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -74,6 +76,10 @@ void integrateVelocities(World& world, double dt);
 /// resolved at predicted positions, so a body at rest stops where its predicted pose touches,
 /// up to g Δt² above its support; without the gap, resting boxes would not count as touching.
 double restingContactMargin(const World& world, double margin, double dt);
+
+/// The output-header entries (name, value) of the impulse-step parameters both techniques
+/// share: iterations, normal model, margin, gathering and its constants.
+std::map<std::string, std::string> impulseParameters(const ImpulseParams& params);
 
 /// The smallest half extent of the movable bodies, m: the length ℓ the parameters scale with.
 double smallestHalfExtent(const World& world);

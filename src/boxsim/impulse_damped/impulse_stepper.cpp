@@ -17,14 +17,9 @@ ImpulseStepper::ImpulseStepper(const ImpulseStepperParams& params)
 }
 
 std::map<std::string, std::string> ImpulseStepper::parameters() const {
-  return {{"collision_iterations", std::to_string(params_.impulse.collisionIterations)},
-          {"contact_iterations", std::to_string(params_.impulse.contactIterations)},
-          {"contact_normal", contactNormalModelName(params_.impulse.normalModel)},
-          {"contact_margin_per_l", shortestText(params_.impulse.contactMargin)},
-          {"contact_gathering", contactGatheringName(params_.impulse.gathering)},
-          {"slow_widening_per_l", shortestText(params_.impulse.slowWidening)},
-          {"exact_reach_per_l", shortestText(params_.impulse.exactReach)},
-          {"shock_propagation", params_.shockPropagation ? "on" : "off"}};
+  std::map<std::string, std::string> parameters = impulseParameters(params_.impulse);
+  parameters["shock_propagation"] = params_.shockPropagation ? "on" : "off";
+  return parameters;
 }
 
 StepStats ImpulseStepper::step(World& world, double dt) {
