@@ -1,0 +1,135 @@
+// The contact LCP of Baraff 1994 with the thesis' changes (§3.3.1): the pivoting solver against
+// the LCP conditions and against enumeration of the clamped set.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "boxsim/analytic_lcp/lcp_enumeration.hpp"
+#include "boxsim/analytic_lcp/lcp_solver.hpp"
+#include "seeded_random.hpp"
+
+using namespace boxsim;
+using boxsim::testing::SeededRandom;
+
+namespace {
+
+/// A random feasible LCP with a symmetric positive semidefinite A = B Bᵀ (B n × k, singular
+/// when k < n) and b = −A z0 + w0 with z0, w0 >= 0, so z0 is feasible and a solution exists
+/// (a feasible monotone LCP is solvable).
+std::pair<MatX, VecX> randomLcp(SeededRandom& random, int n, int k) {
+  MatX B(n, k);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < k; ++j) B(i, j) = random.uniform(-1.0, 1.0);
+  const MatX A = B * B.transpose();
+  VecX z0(n), w0(n);
+  for (int i = 0; i < n; ++i) {
+    z0[i] = random.uniform(0.0, 1.0) < 0.5 ? 0.0 : random.uniform(0.0, 2.0);
+    w0[i] = random.uniform(0.0, 1.0) < 0.5 ? 0.0 : random.uniform(0.0, 2.0);
+  }
+  return {A, VecX(-A * z0 + w0)};
+}
+
+LcpParams exact() {
+  LcpParams p;
+  p.epsilon = 1e-10;  // in units of |b| ~ 1: the LCP itself, not the thesis' physical tolerance
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("Baraff's pivoting solves random positive semidefinite LCPs, singular ones included",
+          "[analytic_lcp][lcp][reference]") {
+  SeededRandom random(1994);
+  int singular = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const int n = random.integer(1, 12);
+    const int k = random.integer(1, n + 2);
+    singular += k < n;
+    const auto [A, b] = randomLcp(random, n, k);
+    const LcpResult r = solveContactLcp(A, b, exact());
+    INFO("trial " << trial << ", n " << n << ", rank <= " << k << ": " << r.failure);
+    REQUIRE(r.converged);
+    // The conditions, scaled by the problem (lcpViolation); ε and rounding through at most
+    // n pivots of a well-scaled problem stay far below 1e-7.
+    CHECK(lcpViolation(A, b, r.f) < 1e-7);
+    // a is unique for symmetric positive semidefinite A: the reference must give the same.
+    const std::optional<VecX> reference = enumerateContactLcp(A, b, 1e-9);
+    REQUIRE(reference.has_value());
+    const VecX aReference = A * *reference + b;
+    CHECK((r.a - aReference).cwiseAbs().maxCoeff() < 1e-6 * std::max(1.0, b.cwiseAbs().maxCoeff()));
+  }
+  CHECK(singular > 100);
+}
+
+TEST_CASE("Redundant contacts: four coplanar corners give a singular A and still a solution",
+          "[analytic_lcp][lcp][singular]") {
+  // A unit cube of 1 kg on a plane, four corner contacts: a_i = n · (acceleration of corner i)
+  // = J_i M⁻¹ J_jᵀ f_j + b_i, J_i = (n, r_i × n). Three of the four rows are independent.
+  const double m = 1.0, I = m / 6.0;  // unit cube: I = m (1² + 1²) / 12
+  const Vec3 n = Vec3::UnitY();
+  MatX J(4, 6);
+  int row = 0;
+  for (double x : {-0.5, 0.5})
+    for (double z : {-0.5, 0.5}) {
+      const Vec3 r(x, -0.5, z);
+      J.row(row).head<3>() = n.transpose();
+      J.row(row).tail<3>() = r.cross(n).transpose();
+      ++row;
+    }
+  Eigen::Matrix<double, 6, 6> Minv = Eigen::Matrix<double, 6, 6>::Zero();
+  Minv.diagonal() << 1 / m, 1 / m, 1 / m, 1 / I, 1 / I, 1 / I;
+  const MatX A = J * Minv * J.transpose();
+  const VecX b = VecX::Constant(4, -9.81);  // gravity, at rest
+  REQUIRE(A.fullPivLu().rank() == 3);
+  for (const LcpLinearSolver solver : {LcpLinearSolver::CompleteOrthogonal, LcpLinearSolver::Ldlt}) {
+    LcpParams params;
+    params.linearSolver = solver;
+    const LcpResult r = solveContactLcp(A, b, params);
+    INFO("solver " << static_cast<int>(solver) << ": " << r.failure);
+    CHECK(r.converged);
+    // The net force holds the weight and the net torque is zero: the box does not accelerate.
+    const VecX wrench = J.transpose() * r.f;
+    CHECK(wrench[1] == Approx(m * 9.81).epsilon(1e-9));
+    CHECK(wrench.tail<3>().norm() < 1e-9);
+    CHECK(r.a.cwiseAbs().maxCoeff() < 1e-9);
+    CHECK(r.f.minCoeff() >= 0.0);
+  }
+}
+
+TEST_CASE("The thesis' tolerance: a contact approaching slower than eps gets no force",
+          "[analytic_lcp][lcp]") {
+  // One contact whose points accelerate into each other at 5e-6 m/s², below ε = 1e-5
+  // (\thesis{§3.3.1}): left alone. With ε = 0 (Baraff's a_d < 0) it is driven to exactly zero.
+  MatX A(1, 1);
+  A << 2.0;
+  VecX b(1);
+  b << -5e-6;
+  const LcpResult tolerant = solveContactLcp(A, b, LcpParams{});
+  CHECK(tolerant.f[0] == 0.0);
+  CHECK(tolerant.a[0] == -5e-6);
+  LcpParams strict;
+  strict.epsilon = 0.0;
+  const LcpResult exactResult = solveContactLcp(A, b, strict);
+  CHECK(exactResult.f[0] == Approx(2.5e-6));
+  CHECK(std::abs(exactResult.a[0]) < 1e-18);
+  // A positive coupling: driving the first contact pushes the second apart, which then needs
+  // no force; the order (most negative first) is Baraff's free choice made deterministic.
+  MatX A2(2, 2);
+  A2 << 2.0, 1.0, 1.0, 2.0;
+  VecX b2(2);
+  b2 << -1.0, -0.2;
+  const LcpResult r = solveContactLcp(A2, b2, LcpParams{});
+  CHECK(r.f[0] == Approx(0.5));
+  CHECK(r.f[1] == 0.0);
+  CHECK(r.a[1] == Approx(0.3));
+}
+
+TEST_CASE("Bad LCP input is refused with the shapes named", "[analytic_lcp][lcp][errors]") {
+  MatX A = MatX::Identity(2, 2);
+  VecX b = VecX::Zero(3);
+  CHECK_THROWS_WITH(solveContactLcp(A, b), Catch::Contains("2 x 2") && Catch::Contains("3"));
+  VecX nan(2);
+  nan << 0.0, std::nan("");
+  CHECK_THROWS_WITH(solveContactLcp(A, nan), Catch::Contains("finite"));
+}
