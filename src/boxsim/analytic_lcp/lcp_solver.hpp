@@ -21,8 +21,9 @@
 
 namespace boxsim {
 
-/// Dynamic-size Eigen types of the LCP (the contact count changes from step to step).
+/// A dynamic-size matrix: the contact count changes from step to step.
 using MatX = Eigen::MatrixXd;
+/// A dynamic-size vector, one entry per contact.
 using VecX = Eigen::VectorXd;
 
 /// How the linear system of fdirection, A_CC x = −A_Cd, is solved (Baraff 1994, §5).
@@ -43,6 +44,8 @@ struct LcpParams {
   /// \thesis{§3.3.1}'s post-processing: forces still negative when the loop ends are set to
   /// zero (they would pull the bodies together). Off reproduces the failure the thesis saw.
   bool clampNegativeForces = true;
+  /// How fdirection's linear system is solved; the complete orthogonal decomposition copes
+  /// with redundant contacts.
   LcpLinearSolver linearSolver = LcpLinearSolver::CompleteOrthogonal;
   /// Guard against cycling: at most this many pivots (maxstep events) in all, as a multiple
   /// of n. Baraff proves termination for positive definite A; rounding can still cycle.
