@@ -2,6 +2,8 @@
 // the LCP conditions and against enumeration of the clamped set.
 #include <catch2/catch.hpp>
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
 
@@ -132,4 +134,164 @@ TEST_CASE("Bad LCP input is refused with the shapes named", "[analytic_lcp][lcp]
   VecX nan(2);
   nan << 0.0, std::nan("");
   CHECK_THROWS_WITH(solveContactLcp(A, nan), Catch::Contains("finite"));
+}
+
+// ---------------------------------------------------------------------------------------------
+// The contact matrix of a world (contact_matrix.hpp).
+
+#include "boxsim/analytic_lcp/contact_matrix.hpp"
+#include "boxsim/collision/broad_phase.hpp"
+#include "boxsim/io/scene_builders.hpp"
+
+namespace {
+
+constexpr double kG = 9.81;
+
+World restingWorld() {
+  World world;
+  world.addGround(0.0, 50.0);
+  return world;
+}
+
+/// Solves the world's contact LCP as it stands and returns the forces with the contacts.
+std::pair<std::vector<PointContact>, LcpResult> solveWorld(const World& world) {
+  const std::vector<PointContact> contacts = pointContacts(world, findContacts(world, 1e-6));
+  MatX A;
+  VecX b;
+  contactMatrix(world, contacts, A, b);
+  return {contacts, solveContactLcp(A, b)};
+}
+
+/// The largest linear and angular acceleration of any movable body under f.
+double largestAcceleration(const World& world, const std::vector<PointContact>& contacts,
+                           const VecX& f) {
+  std::vector<Vec3> linear, angular;
+  bodyAccelerations(world, contacts, f, linear, angular);
+  double worst = 0.0;
+  for (std::size_t k = 0; k < linear.size(); ++k)
+    worst = std::max({worst, linear[k].norm(), angular[k].norm()});
+  return worst;
+}
+
+}  // namespace
+
+TEST_CASE("A cube resting on the ground: the contact forces carry its weight and it does not accelerate",
+          "[analytic_lcp][contact_matrix]") {
+  World world = restingWorld();
+  addTower(world, TowerSpec{1});
+  const auto [contacts, r] = solveWorld(world);
+  REQUIRE(contacts.size() == 4);
+  REQUIRE(r.converged);
+  double up = 0.0;
+  for (std::size_t i = 0; i < contacts.size(); ++i) up += r.f[static_cast<int>(i)] * std::abs(contacts[i].normal.y());
+  CHECK(up == Approx(kG).epsilon(1e-9));
+  // ε = 1e-5 m/s² may leave that much acceleration; rounding is far below.
+  CHECK(largestAcceleration(world, contacts, r.f) < 1e-5);
+}
+
+TEST_CASE("A tower of 6: each level's contacts carry the weight above them",
+          "[analytic_lcp][contact_matrix]") {
+  World world = restingWorld();
+  const int count = 6;
+  addTower(world, TowerSpec{count});
+  const auto [contacts, r] = solveWorld(world);
+  REQUIRE(r.converged);
+  // Load through the contacts under box k (bodies 1..count from the bottom): (count - k + 1) m g.
+  std::vector<double> load(world.bodies.size(), 0.0);
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const PointContact& c = contacts[i];
+    const int upper = world.bodies[c.a].s.x.y() > world.bodies[c.b].s.x.y() ? c.a : c.b;
+    load[upper] += r.f[static_cast<int>(i)] * std::abs(c.normal.y());
+  }
+  for (int k = 1; k <= count; ++k) {
+    INFO("box " << k);
+    CHECK(load[k] == Approx((count - k + 1) * kG).epsilon(1e-8));
+  }
+  CHECK(largestAcceleration(world, contacts, r.f) < 1e-5);
+  // The reference agrees on the accelerations (forces are not unique: 4 corners per level).
+  MatX A;
+  VecX b;
+  contactMatrix(world, contacts, A, b);
+  if (contacts.size() <= 16) {
+    const std::optional<VecX> reference = enumerateContactLcp(A, b, 1e-9);
+    REQUIRE(reference);
+    CHECK((A * *reference + b - r.a).cwiseAbs().maxCoeff() < 1e-5);
+  }
+}
+
+TEST_CASE("A pyramid of base 4 stands under its LCP forces", "[analytic_lcp][contact_matrix]") {
+  World world = restingWorld();
+  addPyramid(world, PyramidSpec{4});
+  const auto [contacts, r] = solveWorld(world);
+  REQUIRE(r.converged);
+  MatX A;
+  VecX b;
+  contactMatrix(world, contacts, A, b);
+  CHECK(lcpViolation(A, b, r.f) < 1e-7);
+  CHECK(r.f.minCoeff() >= 0.0);
+  CHECK(largestAcceleration(world, contacts, r.f) < 1e-5);
+}
+
+TEST_CASE("The contact matrix matches accelerations computed body by body", "[analytic_lcp][contact_matrix]") {
+  // Random bodies with random velocities and random synthetic contacts between them. Column j
+  // of A is the change of every a_i when contact j pushes with 1 N, and b is a with no force;
+  // both are recomputed here from bodyAccelerations (Newton-Euler per body) and the point
+  // kinematics p̈ = v̇ + ω̇ × r + ω × (ω × r), a second path to the same quantities.
+  SeededRandom random(31);
+  for (int trial = 0; trial < 50; ++trial) {
+    World world = restingWorld();
+    for (int k = 0; k < 4; ++k) {
+      RigidBody box = RigidBody::box(random.vector(0.2, 1.0), random.uniform(0.5, 3.0));
+      box.s.x = random.vector(-2.0, 2.0);
+      box.s.q = random.rotation();
+      box.updateDerived();
+      box.setVelocity(random.vector(-1.0, 1.0));
+      box.setAngularVelocity(random.vector(-2.0, 2.0));
+      world.bodies.push_back(box);
+      world.names.push_back("box");
+    }
+    std::vector<PointContact> contacts;
+    for (int i = 0; i < 6; ++i) {
+      PointContact c;
+      c.a = random.integer(0, 4);
+      do c.b = random.integer(0, 4); while (c.b == c.a);
+      c.point = random.vector(-2.0, 2.0);
+      c.normal = random.vector(-1.0, 1.0).normalized();
+      c.normalRate = random.vector(-1.0, 1.0);
+      contacts.push_back(c);
+    }
+    MatX A;
+    VecX b;
+    contactMatrix(world, contacts, A, b);
+    const auto relativeAcceleration = [&](const VecX& f, bool withFreeTerms) {
+      std::vector<Vec3> linear, angular;
+      bodyAccelerations(world, contacts, f, linear, angular);
+      VecX a(contacts.size());
+      for (std::size_t i = 0; i < contacts.size(); ++i) {
+        const PointContact& c = contacts[i];
+        Vec3 p[2];
+        for (int s = 0; s < 2; ++s) {
+          const int k = s ? c.b : c.a;
+          const RigidBody& body = world.bodies[k];
+          const Vec3 r = c.point - body.s.x;
+          p[s] = body.immovable ? Vec3(Vec3::Zero())
+                                : Vec3(linear[k] + angular[k].cross(r) +
+                                       body.omega.cross(body.omega.cross(r)));
+        }
+        const Vec3 dv = world.bodies[c.b].pointVelocity(c.point) - world.bodies[c.a].pointVelocity(c.point);
+        a[static_cast<int>(i)] = c.normal.dot(p[1] - p[0]) + (withFreeTerms ? 2.0 * c.normalRate.dot(dv) : 0.0);
+      }
+      return a;
+    };
+    const VecX free = relativeAcceleration(VecX::Zero(contacts.size()), true);
+    CHECK((free - b).cwiseAbs().maxCoeff() < 1e-9);
+    for (int j = 0; j < static_cast<int>(contacts.size()); ++j) {
+      VecX unit = VecX::Zero(contacts.size());
+      unit[j] = 1.0;
+      const VecX column = relativeAcceleration(unit, true) - free;
+      CHECK((column - A.col(j)).cwiseAbs().maxCoeff() < 1e-9);
+    }
+    CHECK((A - A.transpose()).cwiseAbs().maxCoeff() == 0.0);
+    CHECK(Eigen::SelfAdjointEigenSolver<MatX>(A).eigenvalues().minCoeff() > -1e-9);
+  }
 }

@@ -146,6 +146,7 @@ LcpResult solveContactLcp(const MatX& A, const VecX& b, const LcpParams& params)
 
 double lcpViolation(const MatX& A, const VecX& b, const VecX& f) {
   requireProblem(A, b);
+  if (b.size() == 0) return 0.0;
   const VecX a = A * f + b;
   const double aScale = std::max(1.0, b.cwiseAbs().maxCoeff());
   const double diagonal = A.size() ? A.diagonal().maxCoeff() : 1.0;
