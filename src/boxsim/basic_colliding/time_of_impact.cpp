@@ -8,10 +8,11 @@ namespace boxsim {
 
 TimeOfImpact findTimeOfImpact(World& world, const WorldState& start, double span,
                               std::pair<int, int> firstPair, Integrator integrator,
-                              const TimeOfImpactParams& params, const std::vector<char>& held) {
+                              const TimeOfImpactParams& params, const std::vector<char>& held,
+                              const std::vector<Wrench>& extra) {
   const auto advanceTo = [&](double t) {
     world.restoreState(start);
-    integrateWorld(world, t, integrator, held);
+    integrateWorld(world, t, integrator, held, extra);
   };
   TimeOfImpact toi;
   toi.pair = firstPair;

@@ -39,11 +39,14 @@ struct TimeOfImpact {
 /// `held` (see integrateWorld) to the midpoint and tests the pairs: if the focus pair
 /// intersects, the bracket closes from above; if it does not but another pair does, that
 /// earlier collision becomes the focus (a restart); if none does, the bracket closes from below.
-/// The search also stops when rounding no longer moves the midpoint.
+/// The search also stops when rounding no longer moves the midpoint. `extra` (empty, or one
+/// wrench per body) holds forces besides gravity, constant over the span: contact forces of
+/// the analytic method (analytic_lcp/analytic_stepper.hpp).
 /// \return the bracket; on return `world` holds the state at tSeparated.
 TimeOfImpact findTimeOfImpact(World& world, const WorldState& start, double span,
                               std::pair<int, int> firstPair, Integrator integrator,
                               const TimeOfImpactParams& params = {},
-                              const std::vector<char>& held = {});
+                              const std::vector<char>& held = {},
+                              const std::vector<Wrench>& extra = {});
 
 }  // namespace boxsim

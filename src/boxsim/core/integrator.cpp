@@ -29,29 +29,40 @@ void rotate(BodyState& s, const Vec3& omega, double dt) {
 }
 }  // namespace
 
-void integrateBody(RigidBody& body, double dt, const Vec3& gravity, Integrator integrator) {
+void integrateBody(RigidBody& body, double dt, const Vec3& gravity, Integrator integrator,
+                   const Wrench& extra) {
   if (body.immovable || dt == 0.0) return;
   BodyState& s = body.s;
-  const Vec3 force = body.mass * gravity;
+  const Vec3 force = body.mass * gravity + extra.force;
+  const bool torque = extra.torque != Vec3::Zero();
   switch (integrator) {
     case Integrator::ForwardEuler:
       s.x += dt * body.v;
       rotate(s, body.omega, dt);
       s.P += dt * force;
-      // No torque acts (gravity pulls at the centre of mass), so L is unchanged.
+      // Gravity pulls at the centre of mass: only an extra torque changes L.
+      if (torque) s.L += dt * extra.torque;
       break;
     case Integrator::SemiImplicitEuler:
       s.P += dt * force;
       s.x += dt * (body.invMass * s.P);
-      rotate(s, body.omega, dt);
+      if (torque) {
+        s.L += dt * extra.torque;
+        rotate(s, body.Iinv * s.L, dt);
+      } else {
+        rotate(s, body.omega, dt);
+      }
       break;
   }
   body.updateDerived();
 }
 
-void integrateWorld(World& world, double dt, Integrator integrator, const std::vector<char>& held) {
+void integrateWorld(World& world, double dt, Integrator integrator, const std::vector<char>& held,
+                    const std::vector<Wrench>& extra) {
   for (std::size_t i = 0; i < world.bodies.size(); ++i)
-    if (held.empty() || !held[i]) integrateBody(world.bodies[i], dt, world.gravity, integrator);
+    if (held.empty() || !held[i])
+      integrateBody(world.bodies[i], dt, world.gravity, integrator,
+                    extra.empty() ? Wrench{} : extra[i]);
 }
 
 }  // namespace boxsim

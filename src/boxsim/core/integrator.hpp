@@ -27,13 +27,23 @@ std::string integratorName(Integrator integrator);
 /// listing the valid ones.
 Integrator parseIntegrator(const std::string& name);
 
-/// Advances one body by dt (s, may be 0) under gravity (m/s^2) and no other force or torque;
-/// the quaternion is renormalised after the step. Immovable bodies do not move.
-void integrateBody(RigidBody& body, double dt, const Vec3& gravity, Integrator integrator);
+/// A force and torque held constant over an integration interval, applied besides gravity.
+struct Wrench {
+  Vec3 force = Vec3::Zero();   ///< N, through the centre of mass
+  Vec3 torque = Vec3::Zero();  ///< N m, about the centre of mass
+};
+
+/// Advances one body by dt (s, may be 0) under gravity (m/s^2) and `extra` (constant over dt;
+/// none by default); the quaternion is renormalised after the step. Immovable bodies do not
+/// move. With a torque, ForwardEuler turns q with ω(t) and then adds Δt τ to L;
+/// SemiImplicitEuler adds Δt τ to L first and turns q with ω = I⁻¹(t) L(t+Δt).
+void integrateBody(RigidBody& body, double dt, const Vec3& gravity, Integrator integrator,
+                   const Wrench& extra = {});
 
 /// Advances every body of the world by dt (s) except those whose entry in `held` is non-zero
-/// (`held` is empty, holding none, or has one entry per body).
+/// (`held` is empty, holding none, or has one entry per body). `extra` is empty (gravity only)
+/// or holds one wrench per body, constant over dt.
 void integrateWorld(World& world, double dt, Integrator integrator,
-                    const std::vector<char>& held = {});
+                    const std::vector<char>& held = {}, const std::vector<Wrench>& extra = {});
 
 }  // namespace boxsim
