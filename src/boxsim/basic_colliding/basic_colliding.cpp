@@ -18,17 +18,75 @@ std::map<std::string, std::string> BasicCollidingStepper::parameters() const {
           {"max_impulse_passes", std::to_string(params_.maxImpulsePasses)}};
 }
 
+void requireCollisionLoopParams(const BasicCollidingParams& params, const std::string& method) {
+  if (!(params.timeOfImpact.timeTolerance > 0.0))
+    throw std::invalid_argument(method + ": timeTolerance must be > 0 s");
+  if (!(params.timeOfImpact.depthTolerance >= 0.0))
+    throw std::invalid_argument(method + ": depthTolerance must be >= 0 m");
+  if (params.maxEventsPerStep < 1 || params.maxImpulsePasses < 1)
+    throw std::invalid_argument(method + ": maxEventsPerStep and maxImpulsePasses must be >= 1");
+}
+
 BasicCollidingStepper::BasicCollidingStepper(const BasicCollidingParams& params)
     : params_(params) {
-  if (!(params.timeOfImpact.timeTolerance > 0.0))
-    throw std::invalid_argument("basic_colliding: timeTolerance must be > 0 s");
-  if (!(params.timeOfImpact.depthTolerance >= 0.0))
-    throw std::invalid_argument("basic_colliding: depthTolerance must be >= 0 m");
-  if (params.maxEventsPerStep < 1 || params.maxImpulsePasses < 1)
-    throw std::invalid_argument("basic_colliding: maxEventsPerStep and maxImpulsePasses must be >= 1");
+  requireCollisionLoopParams(params, "basic_colliding");
 }
 
 StepStats BasicCollidingStepper::step(World& world, double dt) {
+  return advanceColliding(world, dt, params_);
+}
+
+namespace {
+
+/// A pair intersecting at the first overlapping state of a search, with its one contact point
+/// (the manifold centroid, \alg{A.2 L7}) and normal.
+struct Collision {
+  int a, b;      ///< body indices
+  Vec3 point;    ///< m
+  Vec3 normal;   ///< unit, from a to b
+};
+
+std::vector<Collision> collisionsAt(const World& atImpact, double depthTolerance) {
+  // One contact point per colliding pair (A.2 L7 findContactPoint): the centroid of the
+  // pair's contact manifold, so a box landing flat gets a pure linear impulse.
+  std::vector<Collision> collisions;
+  for (const ContactManifold& m : findContacts(atImpact)) {
+    if (m.depth > depthTolerance) collisions.push_back({m.a, m.b, m.centroid(), m.normal});
+  }
+  return collisions;
+}
+
+/// Newtonian impulses for each collision whose bodies approach, in passes until none does; the
+/// restitution of each collision is fixed by its approach speed before the first pass.
+int resolveCollisions(World& world, const std::vector<Collision>& collisions, int maxPasses,
+                      const CollisionLoopHooks& hooks) {
+  std::vector<double> restitution(collisions.size(), world.restitution);
+  if (hooks.restitution)
+    for (std::size_t i = 0; i < collisions.size(); ++i) {
+      const Collision& c = collisions[i];
+      const double speed =
+          -relativeNormalVelocity(world.bodies[c.a], world.bodies[c.b], c.point, c.normal);
+      restitution[i] = hooks.restitution(world, speed);
+    }
+  int impulses = 0;
+  for (int pass = 0; pass < maxPasses; ++pass) {
+    int applied = 0;
+    for (std::size_t i = 0; i < collisions.size(); ++i) {
+      const Collision& c = collisions[i];
+      const double j = applyNewtonianImpulse(world.bodies[c.a], world.bodies[c.b], c.point,
+                                             c.normal, restitution[i]);
+      if (j > 0.0) ++applied;
+    }
+    impulses += applied;
+    if (applied == 0) break;
+  }
+  return impulses;
+}
+
+}  // namespace
+
+StepStats advanceColliding(World& world, double dt, const BasicCollidingParams& params,
+                           const CollisionLoopHooks& hooks) {
   StepStats stats;
   // Bodies that gave up the rest of this step at the events limit; empty until one does.
   std::vector<char> held;
@@ -36,25 +94,27 @@ StepStats BasicCollidingStepper::step(World& world, double dt) {
   double remaining = dt;
   while (remaining > 0.0) {
     const WorldState start = world.saveState();
+    const std::vector<Wrench> extra = hooks.extraForces ? hooks.extraForces(world) : std::vector<Wrench>{};
     // §2.1 step 1: integrate velocity and force forward in time.
-    integrateWorld(world, remaining, params_.integrator, held);
+    integrateWorld(world, remaining, params.integrator, held, extra);
     // §2.1 step 2: if two objects intersect, the simulation is stopped.
     const std::pair<int, int> first =
-        firstIntersectingPair(world, params_.timeOfImpact.depthTolerance);
+        firstIntersectingPair(world, params.timeOfImpact.depthTolerance);
     if (first.first < 0) break;
     // §2.1 step 3: search backward and forward in time for the collision time (bisection);
     // the search leaves every body rolled back to just before the contact.
-    const TimeOfImpact toi = findTimeOfImpact(world, start, remaining, first, params_.integrator,
-                                              params_.timeOfImpact, held);
+    const TimeOfImpact toi = findTimeOfImpact(world, start, remaining, first, params.integrator,
+                                              params.timeOfImpact, held, extra);
     stats.bisections += toi.bisections;
     stats.restarts += toi.restarts;
     // The contact geometry comes from the first intersecting state, the velocities from the
     // rolled-back one: the two differ by less than the time tolerance.
     World atImpact = world;
     atImpact.restoreState(start);
-    integrateWorld(atImpact, toi.tIntersecting, params_.integrator, held);
-    const std::vector<Collision> collisions = collisionsAt(atImpact);
-    if (eventsSinceHold >= params_.maxEventsPerStep) {
+    integrateWorld(atImpact, toi.tIntersecting, params.integrator, held, extra);
+    const std::vector<Collision> collisions =
+        collisionsAt(atImpact, params.timeOfImpact.depthTolerance);
+    if (eventsSinceHold >= params.maxEventsPerStep) {
       // The collisions have crowded together (§4.3 chattering): instead of hanging, hold the
       // bodies colliding now where they are for the rest of the step and let the others go on.
       // The focus pair always has a body still moving (it did not intersect at `start`), so
@@ -73,42 +133,14 @@ StepStats BasicCollidingStepper::step(World& world, double dt) {
       // Every search counts as an event, even when no pair still approaches at the contact time
       // (a box resting on the ground, which this technique cannot hold up): counting searches
       // is what bounds the loop.
-      resolveCollisions(world, collisions);
+      resolveCollisions(world, collisions, params.maxImpulsePasses, hooks);
       ++stats.events;
       ++eventsSinceHold;
     }
     remaining -= toi.tSeparated;
   }
-  stats.contacts = static_cast<int>(findContacts(world, params_.contactMargin).size());
+  stats.contacts = static_cast<int>(findContacts(world, params.contactMargin).size());
   return stats;
-}
-
-std::vector<BasicCollidingStepper::Collision> BasicCollidingStepper::collisionsAt(
-    const World& atImpact) const {
-  // One contact point per colliding pair (A.2 L7 findContactPoint): the centroid of the
-  // pair's contact manifold, so a box landing flat gets a pure linear impulse.
-  std::vector<Collision> collisions;
-  for (const ContactManifold& m : findContacts(atImpact)) {
-    if (m.depth > params_.timeOfImpact.depthTolerance)
-      collisions.push_back({m.a, m.b, m.centroid(), m.normal});
-  }
-  return collisions;
-}
-
-int BasicCollidingStepper::resolveCollisions(World& world,
-                                             const std::vector<Collision>& collisions) const {
-  int impulses = 0;
-  for (int pass = 0; pass < params_.maxImpulsePasses; ++pass) {
-    int applied = 0;
-    for (const Collision& c : collisions) {
-      const double j = applyNewtonianImpulse(world.bodies[c.a], world.bodies[c.b], c.point,
-                                             c.normal, world.restitution);
-      if (j > 0.0) ++applied;
-    }
-    impulses += applied;
-    if (applied == 0) break;
-  }
-  return impulses;
 }
 
 }  // namespace boxsim

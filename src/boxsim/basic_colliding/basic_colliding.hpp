@@ -10,6 +10,8 @@
 /// BasicCollidingParams::maxEventsPerStep bounds the work of one step instead of hanging.
 #pragma once
 
+#include <functional>
+#include <string>
 #include <vector>
 
 #include "boxsim/basic_colliding/time_of_impact.hpp"
@@ -44,6 +46,26 @@ struct BasicCollidingParams {
   double contactMargin = 1e-3;
 };
 
+/// What the analytic method (\thesis{§3.3.1}) adds to the loop of the basic colliding
+/// technique; both members may be empty, which is the basic technique itself.
+struct CollisionLoopHooks {
+  /// Forces besides gravity over the interval that starts at `world`'s current state, one
+  /// wrench per body (or empty for none); held constant over the interval, as Euler
+  /// integration treats forces (\thesis{§6.2}). Called once per integration interval.
+  std::function<std::vector<Wrench>(const World& world)> extraForces;
+  /// The restitution of a collision whose bodies approach at `speed` m/s at the contact
+  /// (sticky collisions, \thesis{§4.3}); empty: world.restitution for every collision.
+  std::function<double(const World& world, double speed)> restitution;
+};
+
+/// One step of dt s of the \thesis{§2.1} loop, repeated until dt is covered: integrate every
+/// body (with the hooks' extra forces), find the first intersecting pair, bisect for its time of
+/// impact, roll back, apply Newtonian impulses to the pairs intersecting then (in passes until
+/// none approaches; restitution from the hooks), and go on. Bounded by
+/// params.maxEventsPerStep as BasicCollidingParams describes.
+StepStats advanceColliding(World& world, double dt, const BasicCollidingParams& params,
+                           const CollisionLoopHooks& hooks = {});
+
 /// The basic colliding technique as a Stepper ("basic_colliding").
 class BasicCollidingStepper final : public Stepper {
  public:
@@ -52,25 +74,18 @@ class BasicCollidingStepper final : public Stepper {
   explicit BasicCollidingStepper(const BasicCollidingParams& params = {});
   std::string name() const override { return "basic_colliding"; }
   std::map<std::string, std::string> parameters() const override;
-  /// Advances by dt (s): \thesis{§2.1} steps 1-4, repeated until the whole dt is covered.
+  /// Advances by dt (s): \thesis{§2.1} steps 1-4, repeated until the whole dt is covered
+  /// (advanceColliding with no hooks).
   StepStats step(World& world, double dt) override;
   /// The parameters it runs with.
   const BasicCollidingParams& params() const { return params_; }
 
  private:
-  /// The pairs that intersect in `atImpact` (the first overlapping state of a search), with the
-  /// one contact point of each (the manifold centroid, \alg{A.2 L7}) and its normal.
-  struct Collision {
-    int a, b;      ///< body indices
-    Vec3 point;    ///< m
-    Vec3 normal;   ///< unit, from a to b
-  };
-  std::vector<Collision> collisionsAt(const World& atImpact) const;
-  /// Applies Newtonian impulses (restitution world.restitution) to each collision whose bodies
-  /// approach in `world`, in passes until none does; returns the number of impulses applied.
-  int resolveCollisions(World& world, const std::vector<Collision>& collisions) const;
-
   BasicCollidingParams params_;
 };
+
+/// Throws std::invalid_argument naming `method` when the loop parameters are out of range
+/// (timeTolerance not > 0, depthTolerance negative, an iteration bound < 1).
+void requireCollisionLoopParams(const BasicCollidingParams& params, const std::string& method);
 
 }  // namespace boxsim
