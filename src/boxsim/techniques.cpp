@@ -2,13 +2,14 @@
 
 #include <stdexcept>
 
+#include "boxsim/analytic_lcp/analytic_stepper.hpp"
 #include "boxsim/basic_colliding/basic_colliding.hpp"
 #include "boxsim/impulse_damped/damped_integration.hpp"
 #include "boxsim/impulse_damped/impulse_stepper.hpp"
 
 namespace boxsim {
 
-std::vector<std::string> methodNames() { return {"basic_colliding", "impulse", "damped"}; }
+std::vector<std::string> methodNames() { return {"basic_colliding", "analytic", "impulse", "damped"}; }
 
 std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueOptions& options) {
   const auto refuse = [&](bool given, const char* option) {
@@ -23,6 +24,15 @@ std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueO
     BasicCollidingParams params;
     if (options.integrator) params.integrator = *options.integrator;
     return std::make_unique<BasicCollidingStepper>(params);
+  }
+  if (method == "analytic") {
+    refuse(options.contactNormal.has_value(), "contact normal");
+    refuse(options.contactGathering.has_value(), "contact gathering");
+    refuse(options.sleep.has_value(), "sleep");
+    refuse(options.plausibilitySeed.has_value(), "plausibility seed");
+    AnalyticParams params;
+    if (options.integrator) params.loop.integrator = *options.integrator;
+    return std::make_unique<AnalyticStepper>(params);
   }
   refuse(options.integrator.has_value(), "integrator");
   if (method == "impulse") {

@@ -46,12 +46,19 @@ struct Collision {
   Vec3 normal;   ///< unit, from a to b
 };
 
-std::vector<Collision> collisionsAt(const World& atImpact, double depthTolerance) {
+std::vector<Collision> collisionsAt(const World& atImpact, double depthTolerance,
+                                    bool everyPoint) {
   // One contact point per colliding pair (A.2 L7 findContactPoint): the centroid of the
-  // pair's contact manifold, so a box landing flat gets a pure linear impulse.
+  // pair's contact manifold, so a box landing flat gets a pure linear impulse. Or, for the
+  // analytic method, every point of the manifold.
   std::vector<Collision> collisions;
   for (const ContactManifold& m : findContacts(atImpact)) {
-    if (m.depth > depthTolerance) collisions.push_back({m.a, m.b, m.centroid(), m.normal});
+    if (m.depth <= depthTolerance) continue;
+    if (!everyPoint) {
+      collisions.push_back({m.a, m.b, m.centroid(), m.normal});
+      continue;
+    }
+    for (int k = 0; k < m.count; ++k) collisions.push_back({m.a, m.b, m.points[k].position, m.normal});
   }
   return collisions;
 }
@@ -98,13 +105,13 @@ StepStats advanceColliding(World& world, double dt, const BasicCollidingParams& 
     // §2.1 step 1: integrate velocity and force forward in time.
     integrateWorld(world, remaining, params.integrator, held, extra);
     // §2.1 step 2: if two objects intersect, the simulation is stopped.
-    const std::pair<int, int> first =
-        firstIntersectingPair(world, params.timeOfImpact.depthTolerance);
+    const std::pair<int, int> first = firstIntersectingPair(
+        world, params.timeOfImpact.depthTolerance, BroadPhase::SweepAndPrune, hooks.notColliding);
     if (first.first < 0) break;
     // §2.1 step 3: search backward and forward in time for the collision time (bisection);
     // the search leaves every body rolled back to just before the contact.
     const TimeOfImpact toi = findTimeOfImpact(world, start, remaining, first, params.integrator,
-                                              params.timeOfImpact, held, extra);
+                                              params.timeOfImpact, held, extra, hooks.notColliding);
     stats.bisections += toi.bisections;
     stats.restarts += toi.restarts;
     // The contact geometry comes from the first intersecting state, the velocities from the
@@ -113,7 +120,7 @@ StepStats advanceColliding(World& world, double dt, const BasicCollidingParams& 
     atImpact.restoreState(start);
     integrateWorld(atImpact, toi.tIntersecting, params.integrator, held, extra);
     const std::vector<Collision> collisions =
-        collisionsAt(atImpact, params.timeOfImpact.depthTolerance);
+        collisionsAt(atImpact, params.timeOfImpact.depthTolerance, hooks.everyPoint);
     if (eventsSinceHold >= params.maxEventsPerStep) {
       // The collisions have crowded together (§4.3 chattering): instead of hanging, hold the
       // bodies colliding now where they are for the rest of the step and let the others go on.

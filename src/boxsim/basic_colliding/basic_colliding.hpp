@@ -56,6 +56,14 @@ struct CollisionLoopHooks {
   /// The restitution of a collision whose bodies approach at `speed` m/s at the contact
   /// (sticky collisions, \thesis{§4.3}); empty: world.restitution for every collision.
   std::function<double(const World& world, double speed)> restitution;
+  /// Intersecting pairs that are no collision (resting contacts held by forces, whose small
+  /// overlap the forces mend); empty: every intersecting pair is a collision.
+  PairFilter notColliding;
+  /// false: one impulse point per colliding pair, the manifold centroid (\alg{A.2 L7}), as the
+  /// basic technique does. true: every manifold point is a collision point of its own (Baraff's
+  /// point contacts), so a rocking box whose corner hits while its centroid does not still
+  /// gets an impulse.
+  bool everyPoint = false;
 };
 
 /// One step of dt s of the \thesis{§2.1} loop, repeated until dt is covered: integrate every

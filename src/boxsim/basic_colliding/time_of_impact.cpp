@@ -9,7 +9,7 @@ namespace boxsim {
 TimeOfImpact findTimeOfImpact(World& world, const WorldState& start, double span,
                               std::pair<int, int> firstPair, Integrator integrator,
                               const TimeOfImpactParams& params, const std::vector<char>& held,
-                              const std::vector<Wrench>& extra) {
+                              const std::vector<Wrench>& extra, const PairFilter& skip) {
   const auto advanceTo = [&](double t) {
     world.restoreState(start);
     integrateWorld(world, t, integrator, held, extra);
@@ -27,7 +27,8 @@ TimeOfImpact findTimeOfImpact(World& world, const WorldState& start, double span
       toi.tIntersecting = mid;
       continue;
     }
-    const std::pair<int, int> other = firstIntersectingPair(world, params.depthTolerance);
+    const std::pair<int, int> other =
+        firstIntersectingPair(world, params.depthTolerance, BroadPhase::SweepAndPrune, skip);
     if (other.first >= 0) {
       // §3.3.1: the search uncovered a collision with a third body before the one it was
       // refining; discard the current one and restart the search on the earlier collision.

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "boxsim/core/integrator.hpp"
+#include "boxsim/collision/broad_phase.hpp"
 #include "boxsim/core/world.hpp"
 
 namespace boxsim {
@@ -41,12 +42,14 @@ struct TimeOfImpact {
 /// earlier collision becomes the focus (a restart); if none does, the bracket closes from below.
 /// The search also stops when rounding no longer moves the midpoint. `extra` (empty, or one
 /// wrench per body) holds forces besides gravity, constant over the span: contact forces of
-/// the analytic method (analytic_lcp/analytic_stepper.hpp).
+/// the analytic method (analytic_lcp/analytic_stepper.hpp). Pairs `skip` skips (resting
+/// contacts of the analytic method) are no collision to restart on.
 /// \return the bracket; on return `world` holds the state at tSeparated.
 TimeOfImpact findTimeOfImpact(World& world, const WorldState& start, double span,
                               std::pair<int, int> firstPair, Integrator integrator,
                               const TimeOfImpactParams& params = {},
                               const std::vector<char>& held = {},
-                              const std::vector<Wrench>& extra = {});
+                              const std::vector<Wrench>& extra = {},
+                              const PairFilter& skip = {});
 
 }  // namespace boxsim

@@ -95,8 +95,8 @@ int run(const RunArgs& args) {
   if (summary.limitedSteps > 0)
     std::cerr << "boxsim run: warning: " << summary.limitedSteps << " of " << summary.steps
               << " steps hit the work limit of the '" << stepper->name()
-              << "' method (for basic_colliding: collisions crowding together as bodies come to "
-                 "rest, thesis §4.3) and dropped the rest of their time step\n";
+              << "' method (for basic_colliding and analytic: collisions crowding together as "
+                 "bodies come to rest, thesis §4.3) and dropped the rest of their time step\n";
   return 0;
 }
 
@@ -113,7 +113,7 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("--method,-m", args->method, "Technique: " + methods)->capture_default_str();
   cmd->add_option("--integrator", args->integrator,
                   "Integrator between collisions: forward_euler, semi_implicit_euler "
-                  "(default: the method's own; basic_colliding uses semi_implicit_euler)");
+                  "(basic_colliding and analytic; default: semi_implicit_euler)");
   cmd->add_option("--contact-normal", args->contactNormal,
                   "Contact normal model of impulse and damped: separating_axis, "
                   "previous_closest_face (default), signed_distance")

@@ -81,10 +81,12 @@ bool pairIntersects(const World& world, int i, int j, double tolerance) {
 }
 
 std::pair<int, int> firstIntersectingPair(const World& world, double tolerance,
-                                          BroadPhase kind) {
+                                          BroadPhase kind, const PairFilter& skip) {
   // A negative tolerance asks about boxes closer than -tolerance, so widen the reject to match.
   for (const std::pair<int, int>& p : candidatePairs(world, std::max(0.0, -tolerance), kind))
-    if (pairIntersects(world, p.first, p.second, tolerance)) return p;
+    if (pairIntersects(world, p.first, p.second, tolerance) &&
+        !(skip && skip(world, p.first, p.second)))
+      return p;
   return {-1, -1};
 }
 

@@ -5,6 +5,7 @@
 /// axis-aligned bounding box reject, and sweep and prune (sweep_and_prune.hpp), the default.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -67,10 +68,14 @@ double deepestPenetration(const World& world);
 /// True when bodies i and j overlap with a separating-axis depth above `tolerance` (m).
 bool pairIntersects(const World& world, int i, int j, double tolerance);
 
+/// Pairs a search for intersections passes over: true for (world, i, j) skips the pair i < j.
+using PairFilter = std::function<bool(const World& world, int i, int j)>;
+
 /// The first pair (in candidatePairs order) whose separating-axis depth exceeds `tolerance`
-/// (m), or (-1, -1) when none does. A negative tolerance also reports pairs closer than
-/// -tolerance. The result does not depend on `kind`.
+/// (m) and that `skip` (when set) does not skip, or (-1, -1) when none does. A negative
+/// tolerance also reports pairs closer than -tolerance. The result does not depend on `kind`.
 std::pair<int, int> firstIntersectingPair(const World& world, double tolerance,
-                                          BroadPhase kind = BroadPhase::SweepAndPrune);
+                                          BroadPhase kind = BroadPhase::SweepAndPrune,
+                                          const PairFilter& skip = {});
 
 }  // namespace boxsim

@@ -1,0 +1,100 @@
+/// \file
+/// The analytic method: LCP contact forces and chronological collisions (\thesis{§3.3.1}).
+#include "boxsim/analytic_lcp/analytic_stepper.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "boxsim/analytic_lcp/contact_matrix.hpp"
+#include "boxsim/collision/broad_phase.hpp"
+#include "boxsim/collision/contact_manifold.hpp"
+
+namespace boxsim {
+
+AnalyticStepper::AnalyticStepper(const AnalyticParams& params) : params_(params) {
+  requireCollisionLoopParams(params.loop, "analytic");
+  if (!(params.lcp.epsilon >= 0.0) || !std::isfinite(params.lcp.epsilon))
+    throw std::invalid_argument("analytic: the LCP tolerance epsilon must be a finite number >= 0");
+  if (!(params.contactMargin >= 0.0) || !(params.restingSpeed >= 0.0) ||
+      !(params.stickySpeed >= 0.0))
+    throw std::invalid_argument(
+        "analytic: contactMargin, restingSpeed and stickySpeed must be numbers >= 0");
+}
+
+std::map<std::string, std::string> AnalyticStepper::parameters() const {
+  const BasicCollidingParams& loop = params_.loop;
+  return {{"integrator", integratorName(loop.integrator)},
+          {"time_tolerance_s", shortestText(loop.timeOfImpact.timeTolerance)},
+          {"depth_tolerance_m", shortestText(loop.timeOfImpact.depthTolerance)},
+          {"max_events_per_step", std::to_string(loop.maxEventsPerStep)},
+          {"max_impulse_passes", std::to_string(loop.maxImpulsePasses)},
+          {"lcp_epsilon_m_per_s2", shortestText(params_.lcp.epsilon)},
+          {"lcp_clamp_negative_forces", params_.lcp.clampNegativeForces ? "on" : "off"},
+          {"contact_margin_m", shortestText(params_.contactMargin)},
+          {"resting_speed_m_per_s", shortestText(params_.restingSpeed)},
+          {"drift_correction", params_.driftCorrection ? "on" : "off"},
+          {"drift_beta", shortestText(params_.driftBeta)},
+          {"sticky", params_.sticky ? "on" : "off"},
+          {"sticky_speed_m_per_s", shortestText(params_.stickySpeed)}};
+}
+
+std::vector<Wrench> AnalyticStepper::contactWrenches(const World& world, double dt) const {
+  std::vector<PointContact> resting;
+  std::vector<double> approach, depth;
+  for (const ContactManifold& m : findContacts(world, params_.contactMargin)) {
+    const std::vector<PointContact> points = pointContacts(world, {m});
+    for (int k = 0; k < m.count; ++k) {
+      const PointContact& c = points[k];
+      const double vRel = c.normal.dot(world.bodies[c.b].pointVelocity(c.point) -
+                                       world.bodies[c.a].pointVelocity(c.point));
+      if (std::abs(vRel) > params_.restingSpeed) continue;
+      resting.push_back(c);
+      approach.push_back(vRel);
+      depth.push_back(m.points[k].depth);
+    }
+  }
+  std::vector<Wrench> wrenches(world.bodies.size());
+  if (resting.empty()) return wrenches;
+  MatX A;
+  VecX b;
+  contactMatrix(world, resting, A, b);
+  if (params_.driftCorrection && dt > 0.0)
+    for (int i = 0; i < b.size(); ++i)
+      b[i] += approach[i] / dt - params_.driftBeta * std::max(0.0, depth[i]) / (dt * dt);
+  const LcpResult r = solveContactLcp(A, b, params_.lcp);
+  for (std::size_t i = 0; i < resting.size(); ++i) {
+    const PointContact& c = resting[i];
+    const Vec3 F = r.f[static_cast<int>(i)] * c.normal;
+    wrenches[c.b].force += F;
+    wrenches[c.b].torque += (c.point - world.bodies[c.b].s.x).cross(F);
+    wrenches[c.a].force -= F;
+    wrenches[c.a].torque -= (c.point - world.bodies[c.a].s.x).cross(F);
+  }
+  return wrenches;
+}
+
+StepStats AnalyticStepper::step(World& world, double dt) {
+  CollisionLoopHooks hooks;
+  // The drift correction aims at the end of the interval the forces are held over: at most
+  // dt, the step; a collision shortens it, and the next interval recomputes them.
+  hooks.extraForces = [this, dt](const World& w) { return contactWrenches(w, dt); };
+  if (params_.sticky)
+    hooks.restitution = [this](const World& w, double speed) {
+      return speed < params_.stickySpeed ? 0.0 : w.restitution;
+    };
+  // An overlapping pair none of whose contact points approaches faster than restingSpeed is a
+  // resting contact: its LCP force and the drift correction mend the overlap, no bisection.
+  hooks.notColliding = [this](const World& w, int i, int j) {
+    const ContactManifold m = collideBoxes(Obb::of(w.bodies[i]), Obb::of(w.bodies[j]), 0.0);
+    for (int k = 0; k < m.count; ++k) {
+      const Vec3& p = m.points[k].position;
+      const double vRel = m.normal.dot(w.bodies[j].pointVelocity(p) - w.bodies[i].pointVelocity(p));
+      if (vRel < -params_.restingSpeed) return false;
+    }
+    return true;
+  };
+  hooks.everyPoint = true;
+  return advanceColliding(world, dt, params_.loop, hooks);
+}
+
+}  // namespace boxsim
