@@ -78,3 +78,68 @@ TEST_CASE("The analytic method is chosen by name and refuses options it lacks", 
   bad.restingSpeed = -1.0;
   CHECK_THROWS_AS(AnalyticStepper(bad), std::invalid_argument);
 }
+
+namespace {
+
+/// Linear and angular acceleration of every body under the stepper's contact wrenches.
+std::vector<Vec3> accelerations(const World& world, const AnalyticStepper& stepper) {
+  const std::vector<Wrench> wrenches = stepper.contactWrenches(world, kDt);
+  std::vector<Vec3> result;
+  for (std::size_t k = 0; k < world.bodies.size(); ++k) {
+    const RigidBody& b = world.bodies[k];
+    if (b.immovable) {
+      result.push_back(Vec3::Zero());
+      result.push_back(Vec3::Zero());
+      continue;
+    }
+    result.push_back(world.gravity + b.invMass * wrenches[k].force);
+    result.push_back(b.Iinv * (wrenches[k].torque + b.s.L.cross(b.omega)));
+  }
+  return result;
+}
+
+}  // namespace
+
+TEST_CASE("With the geometric-stability exclusion every body accelerates as under the full LCP",
+          "[analytic_lcp][analytic][geometric_stability]") {
+  // A tower of 4 (all stable), a fifth cube overhanging its top by 0.3 m (resting, but not
+  // stable: two corners of its bottom face hang in the air), and a sixth cube tilted 20° with
+  // one edge on the fifth (it topples: a non-zero acceleration).
+  World world = groundWorld();
+  addTower(world, TowerSpec{4});
+  RigidBody over = RigidBody::box(Vec3::Constant(0.5), 1.0);
+  over.s.x = Vec3(0.3, 4.5, 0.0);
+  over.updateDerived();
+  world.bodies.push_back(over);
+  world.names.push_back("overhang");
+  RigidBody tilted = RigidBody::box(Vec3::Constant(0.5), 1.0);
+  const double angle = 20.0 * kPi / 180.0;
+  tilted.s.q = Quat(Eigen::AngleAxisd(angle, Vec3::UnitZ()));
+  // Lowest edge on the overhang's top face (y = 5), the box leaning over +x.
+  tilted.s.x = Vec3(0.2, 5.0 + 0.5 * (std::cos(angle) + std::sin(angle)), 0.0);
+  tilted.updateDerived();
+  world.bodies.push_back(tilted);
+  world.names.push_back("tilted");
+
+  AnalyticParams full;
+  full.driftCorrection = false;
+  AnalyticParams excluded = full;
+  excluded.useGeometricStability = true;
+  const AnalyticStepper fullStepper(full), excludedStepper(excluded);
+  const std::vector<Vec3> a = accelerations(world, fullStepper);
+  const int fullSize = fullStepper.lastLcpSize();
+  const std::vector<Vec3> b = accelerations(world, excludedStepper);
+  const int excludedSize = excludedStepper.lastLcpSize();
+  INFO("LCP size " << fullSize << " full, " << excludedSize << " with the exclusion");
+  CHECK(excludedSize < fullSize);
+  double differs = 0.0, largest = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    differs = std::max(differs, (a[i] - b[i]).norm());
+    largest = std::max(largest, a[i].norm());
+  }
+  INFO("largest acceleration " << largest << ", largest difference " << differs);
+  // The tilted cube topples, so the comparison is not between zeros.
+  CHECK(largest > 1.0);
+  // ε = 1e-5 m/s² on either side, and rounding.
+  CHECK(differs < 1e-4);
+}

@@ -34,14 +34,34 @@ std::map<std::string, std::string> AnalyticStepper::parameters() const {
           {"resting_speed_m_per_s", shortestText(params_.restingSpeed)},
           {"drift_correction", params_.driftCorrection ? "on" : "off"},
           {"drift_beta", shortestText(params_.driftBeta)},
+          {"geometric_stability", params_.useGeometricStability ? "on" : "off"},
           {"sticky", params_.sticky ? "on" : "off"},
           {"sticky_speed_m_per_s", shortestText(params_.stickySpeed)}};
 }
 
 std::vector<Wrench> AnalyticStepper::contactWrenches(const World& world, double dt) const {
+  const std::vector<ContactManifold> manifolds = findContacts(world, params_.contactMargin);
+  // §5.4: stable bodies stand in the LCP as immovable; their mutual contacts leave it.
+  std::vector<char> stable;
+  World standIns;
+  const World* system = &world;
+  if (params_.useGeometricStability) {
+    stable = setGeometricallyStable(world, manifolds, params_.geometricStability);
+    standIns = world;
+    for (std::size_t k = 0; k < standIns.bodies.size(); ++k) {
+      RigidBody& body = standIns.bodies[k];
+      if (!stable[k] || body.immovable) continue;
+      body.immovable = true;
+      body.invMass = 0.0;
+      body.IbodyInvDiag = Vec3::Zero();
+      body.updateDerived();
+    }
+    system = &standIns;
+  }
   std::vector<PointContact> resting;
   std::vector<double> approach, depth;
-  for (const ContactManifold& m : findContacts(world, params_.contactMargin)) {
+  for (const ContactManifold& m : manifolds) {
+    if (!stable.empty() && stable[m.a] && stable[m.b]) continue;
     const std::vector<PointContact> points = pointContacts(world, {m});
     for (int k = 0; k < m.count; ++k) {
       const PointContact& c = points[k];
@@ -54,10 +74,18 @@ std::vector<Wrench> AnalyticStepper::contactWrenches(const World& world, double 
     }
   }
   std::vector<Wrench> wrenches(world.bodies.size());
+  // A stable body is held: no acceleration, linear or angular (ω̇ = I⁻¹ (τ + L × ω) = 0).
+  for (std::size_t k = 0; k < stable.size(); ++k) {
+    const RigidBody& body = world.bodies[k];
+    if (!stable[k] || body.immovable) continue;
+    wrenches[k].force = -body.mass * world.gravity;
+    wrenches[k].torque = -body.s.L.cross(body.omega);
+  }
+  lastLcpSize_ = static_cast<int>(resting.size());
   if (resting.empty()) return wrenches;
   MatX A;
   VecX b;
-  contactMatrix(world, resting, A, b);
+  contactMatrix(*system, resting, A, b);
   if (params_.driftCorrection && dt > 0.0)
     for (int i = 0; i < b.size(); ++i)
       b[i] += approach[i] / dt - params_.driftBeta * std::max(0.0, depth[i]) / (dt * dt);
@@ -65,10 +93,15 @@ std::vector<Wrench> AnalyticStepper::contactWrenches(const World& world, double 
   for (std::size_t i = 0; i < resting.size(); ++i) {
     const PointContact& c = resting[i];
     const Vec3 F = r.f[static_cast<int>(i)] * c.normal;
-    wrenches[c.b].force += F;
-    wrenches[c.b].torque += (c.point - world.bodies[c.b].s.x).cross(F);
-    wrenches[c.a].force -= F;
-    wrenches[c.a].torque -= (c.point - world.bodies[c.a].s.x).cross(F);
+    // Forces on stable bodies change nothing: they are held.
+    if (stable.empty() || !stable[c.b]) {
+      wrenches[c.b].force += F;
+      wrenches[c.b].torque += (c.point - world.bodies[c.b].s.x).cross(F);
+    }
+    if (stable.empty() || !stable[c.a]) {
+      wrenches[c.a].force -= F;
+      wrenches[c.a].torque -= (c.point - world.bodies[c.a].s.x).cross(F);
+    }
   }
   return wrenches;
 }

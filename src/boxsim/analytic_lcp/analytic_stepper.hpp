@@ -15,6 +15,7 @@
 
 #include "boxsim/analytic_lcp/lcp_solver.hpp"
 #include "boxsim/basic_colliding/basic_colliding.hpp"
+#include "boxsim/geometric_stability/geometric_stability.hpp"
 #include "boxsim/core/stepper.hpp"
 
 namespace boxsim {
@@ -58,6 +59,14 @@ struct AnalyticParams {
   /// β of the drift correction: the share of a resting contact's penetration removed per step.
   /// 0.2, a common choice that removes it within a few steps without making the box jump.
   double driftBeta = 0.2;
+  /// The geometric-stability exclusion (\thesis{§5.4}), off by default (the thesis' analytic
+  /// method had no such thing). Stable bodies (geometric_stability.hpp) cannot be accelerated
+  /// by gravity or by frictionless contact forces: their contacts with one another leave the
+  /// LCP, they stand in it as immovable where unstable bodies touch them, and they are held
+  /// against gravity. Every body's acceleration is the full LCP's (tested); the system shrinks.
+  bool useGeometricStability = false;
+  /// Tolerances of the stability classifier.
+  GeometricStabilityParams geometricStability;
   /// Sticky collisions (\thesis{§4.3}) on or off.
   bool sticky = true;
   /// m/s: collisions approaching slower than this are perfectly inelastic when sticky is on.
@@ -79,9 +88,12 @@ class AnalyticStepper final : public Stepper {
   /// extraForces hook) for an interval of dt s (the drift correction needs it): one per body,
   /// zero for bodies with no resting contact.
   std::vector<Wrench> contactWrenches(const World& world, double dt) const;
+  /// Contacts in the last LCP solved by contactWrenches (after any exclusion), for benches.
+  int lastLcpSize() const { return lastLcpSize_; }
 
  private:
   AnalyticParams params_;
+  mutable int lastLcpSize_ = 0;
 };
 
 }  // namespace boxsim
