@@ -49,8 +49,11 @@ TEST_CASE("Baraff's pivoting solves random positive semidefinite LCPs, singular 
     const int k = random.integer(1, n + 2);
     singular += k < n;
     const auto [A, b] = randomLcp(random, n, k);
-    const LcpResult r = solveContactLcp(A, b, exact());
-    INFO("trial " << trial << ", n " << n << ", rank <= " << k << ": " << r.failure);
+    LcpParams params = exact();
+    params.linearSolver = static_cast<LcpLinearSolver>(trial % 3);
+    const LcpResult r = solveContactLcp(A, b, params);
+    INFO("trial " << trial << ", n " << n << ", rank <= " << k << ", solver "
+                  << static_cast<int>(params.linearSolver) << ": " << r.failure);
     REQUIRE(r.converged);
     // The conditions, scaled by the problem (lcpViolation); ε and rounding through at most
     // n pivots of a well-scaled problem stay far below 1e-7.
@@ -84,7 +87,8 @@ TEST_CASE("Redundant contacts: four coplanar corners give a singular A and still
   const MatX A = J * Minv * J.transpose();
   const VecX b = VecX::Constant(4, -9.81);  // gravity, at rest
   REQUIRE(A.fullPivLu().rank() == 3);
-  for (const LcpLinearSolver solver : {LcpLinearSolver::CompleteOrthogonal, LcpLinearSolver::Ldlt}) {
+  for (const LcpLinearSolver solver : {LcpLinearSolver::CompleteOrthogonal, LcpLinearSolver::Ldlt,
+                                       LcpLinearSolver::IncrementalCholesky}) {
     LcpParams params;
     params.linearSolver = solver;
     const LcpResult r = solveContactLcp(A, b, params);

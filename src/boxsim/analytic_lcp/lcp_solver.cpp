@@ -18,14 +18,94 @@ namespace {
 /// not clamped (f = 0, a >= 0).
 enum class ContactSet : unsigned char { Undriven, Clamped, NotClamped };
 
+/// The Cholesky factor L Lᵀ = A_CC of the clamped set, grown a row at a time as contacts are
+/// clamped (O(m²) per contact instead of O(m³) per pivot; \thesis{§5.3} points to such
+/// updates, after Davis and Hager's modifiable factorisations). A contact leaving the set
+/// makes it refactor from the remaining ones in order. A contact whose row depends on the
+/// clamped ones (redundant contacts: a singular A_CC) cannot be appended: the factor is then
+/// given up for the rest of the solve and fdirection falls back to a pivoted LDLᵀ.
+class ClampedFactor {
+ public:
+  explicit ClampedFactor(const MatX& A) : A_(A), L_(A.rows(), A.rows()) {}
+
+  bool usable() const { return usable_; }
+  const std::vector<int>& order() const { return order_; }
+
+  /// Appends contact i; false (and the factor given up) when A_CC would be singular.
+  bool append(int i) {
+    if (!usable_) return false;
+    const int m = static_cast<int>(order_.size());
+    VecX l(m);
+    for (int r = 0; r < m; ++r) {
+      double sum = A_(order_[r], i);
+      for (int c = 0; c < r; ++c) sum -= L_(r, c) * l[c];
+      l[r] = sum / L_(r, r);
+    }
+    const double pivot = A_(i, i) - l.squaredNorm();
+    // Relative to the diagonal: below this the new row is a combination of the others up to
+    // rounding (four coplanar corners leave exactly 0 up to a few ulp).
+    if (!(pivot > kDependentPivot * A_(i, i))) {
+      usable_ = false;
+      return false;
+    }
+    for (int c = 0; c < m; ++c) L_(m, c) = l[c];
+    L_(m, m) = std::sqrt(pivot);
+    order_.push_back(i);
+    return true;
+  }
+
+  /// Removes contact i and refactors the rest in their order.
+  void remove(int i) {
+    std::vector<int> rest;
+    for (int k : order_)
+      if (k != i) rest.push_back(k);
+    order_.clear();
+    for (int k : rest)
+      if (!append(k)) return;
+  }
+
+  /// x with A_CC x = rhs, rhs and x in order() order.
+  VecX solve(const VecX& rhs) const {
+    const int m = static_cast<int>(order_.size());
+    VecX y(m);
+    for (int r = 0; r < m; ++r) {
+      double sum = rhs[r];
+      for (int c = 0; c < r; ++c) sum -= L_(r, c) * y[c];
+      y[r] = sum / L_(r, r);
+    }
+    VecX x(m);
+    for (int r = m - 1; r >= 0; --r) {
+      double sum = y[r];
+      for (int c = r + 1; c < m; ++c) sum -= L_(c, r) * x[c];
+      x[r] = sum / L_(r, r);
+    }
+    return x;
+  }
+
+ private:
+  static constexpr double kDependentPivot = 1e-10;
+  const MatX& A_;
+  MatX L_;
+  std::vector<int> order_;
+  bool usable_ = true;
+};
+
 /// fdirection(d) of Baraff 1994, §5: the change of the forces that moves a_d while every
 /// clamped contact keeps a = 0 and every other force stays put: Δf_d = 1, Δf_C solves
 /// A_CC Δf_C = −A_Cd, the rest is 0.
 VecX forceDirection(const MatX& A, const std::vector<ContactSet>& set, int d,
-                    LcpLinearSolver solver) {
+                    LcpLinearSolver solver, const ClampedFactor* factor) {
   const int n = static_cast<int>(A.rows());
   VecX df = VecX::Zero(n);
   df[d] = 1.0;
+  if (factor && factor->usable()) {
+    const std::vector<int>& order = factor->order();
+    VecX rhs(order.size());
+    for (std::size_t r = 0; r < order.size(); ++r) rhs[static_cast<int>(r)] = -A(order[r], d);
+    const VecX x = factor->solve(rhs);
+    for (std::size_t r = 0; r < order.size(); ++r) df[order[r]] = x[static_cast<int>(r)];
+    return df;
+  }
   std::vector<int> clamped;
   for (int i = 0; i < n; ++i)
     if (set[i] == ContactSet::Clamped) clamped.push_back(i);
@@ -41,8 +121,9 @@ VecX forceDirection(const MatX& A, const std::vector<ContactSet>& set, int d,
   // contacts (four coplanar corners on a plane) make it singular; the minimum-norm
   // least-squares solution then still keeps the clamped accelerations at zero when the system
   // is consistent, and spreads the load evenly among the redundant contacts.
-  const VecX x = solver == LcpLinearSolver::Ldlt ? VecX(Acc.ldlt().solve(rhs))
-                                                 : VecX(Acc.completeOrthogonalDecomposition().solve(rhs));
+  const VecX x = solver == LcpLinearSolver::CompleteOrthogonal
+                     ? VecX(Acc.completeOrthogonalDecomposition().solve(rhs))
+                     : VecX(Acc.ldlt().solve(rhs));
   for (int r = 0; r < m; ++r) df[clamped[r]] = x[r];
   return df;
 }
@@ -97,6 +178,9 @@ LcpResult solveContactLcp(const MatX& A, const VecX& b, const LcpParams& params)
   const long maxPivots = static_cast<long>(params.maxPivotsPerContact) * std::max(n, 1);
   VecX& f = result.f;
   VecX& a = result.a;
+  ClampedFactor factor(A);
+  const ClampedFactor* incremental =
+      params.linearSolver == LcpLinearSolver::IncrementalCholesky ? &factor : nullptr;
   // compute_forces: while an undriven contact accelerates into its partner faster than ε
   // (\thesis{§3.3.1}: −ε rather than Baraff's 0), drive it to zero; the most negative first.
   for (;;) {
@@ -111,7 +195,7 @@ LcpResult solveContactLcp(const MatX& A, const VecX& b, const LcpParams& params)
         result.failure = "pivot limit reached (cycling)";
         break;
       }
-      const VecX df = forceDirection(A, set, d, params.linearSolver);
+      const VecX df = forceDirection(A, set, d, params.linearSolver, incremental);
       const VecX da = A * df;
       const auto [s, j] = maxStep(f, a, df, da, set, d);
       ++result.pivots;
@@ -125,14 +209,17 @@ LcpResult solveContactLcp(const MatX& A, const VecX& b, const LcpParams& params)
       if (j == d) {
         set[d] = ContactSet::Clamped;
         a[d] = 0.0;
+        if (incremental) factor.append(d);
         break;
       }
       if (set[j] == ContactSet::Clamped) {
         set[j] = ContactSet::NotClamped;
         f[j] = 0.0;
+        if (incremental) factor.remove(j);
       } else {
         set[j] = ContactSet::Clamped;
         a[j] = 0.0;
+        if (incremental) factor.append(j);
       }
     }
     if (!result.converged) break;

@@ -31,9 +31,13 @@ enum class LcpLinearSolver {
   /// Eigen's CompleteOrthogonalDecomposition, refactored at every pivot: the minimum-norm
   /// least-squares solution, so a singular A_CC (redundant contacts) still gives a direction.
   CompleteOrthogonal,
-  /// Eigen's LDLᵀ with pivoting (LDLT), refactored at every pivot: the symmetric factorisation
-  /// \thesis{§5.3} points to; exact for a nonsingular A_CC, unreliable for a singular one.
+  /// Eigen's LDLᵀ with pivoting (LDLT), refactored at every pivot; a zero pivot (singular
+  /// A_CC) contributes nothing to the solution, which again keeps a consistent system solved.
   Ldlt,
+  /// A Cholesky factor of A_CC grown by a row as each contact is clamped and rebuilt when one
+  /// leaves (the updated symmetric factorisation \thesis{§5.3} points to); once a redundant
+  /// contact would make A_CC singular, Ldlt for the rest of the solve.
+  IncrementalCholesky,
 };
 
 /// Parameters of solveContactLcp.
@@ -44,9 +48,9 @@ struct LcpParams {
   /// \thesis{§3.3.1}'s post-processing: forces still negative when the loop ends are set to
   /// zero (they would pull the bodies together). Off reproduces the failure the thesis saw.
   bool clampNegativeForces = true;
-  /// How fdirection's linear system is solved; the complete orthogonal decomposition copes
-  /// with redundant contacts.
-  LcpLinearSolver linearSolver = LcpLinearSolver::CompleteOrthogonal;
+  /// How fdirection's linear system is solved. All three cope with redundant contacts; the
+  /// incremental factor is the fastest while the clamped set is independent.
+  LcpLinearSolver linearSolver = LcpLinearSolver::IncrementalCholesky;
   /// Guard against cycling: at most this many pivots (maxstep events) in all, as a multiple
   /// of n. Baraff proves termination for positive definite A; rounding can still cycle.
   int maxPivotsPerContact = 50;
