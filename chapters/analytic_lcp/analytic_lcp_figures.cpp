@@ -1,0 +1,146 @@
+// Reproduction driver of the analytic contact forces chapter (thesis §2.6.1, §3.3.1, §4.3).
+//
+// Writes the data of the chapter's figures into the output folder, each file whole or not at
+// all: collision events of the dropped die per frame under the analytic method with and
+// without sticky collisions and under the basic colliding technique (§4.3); the load each
+// level of a resting tower carries under its LCP forces; and the LCP solve time against the
+// number of contacts for each linear solver. Timings are measurements of this machine.
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include "boxsim/analytic_lcp/analytic_stepper.hpp"
+#include "boxsim/analytic_lcp/contact_matrix.hpp"
+#include "boxsim/basic_colliding/basic_colliding.hpp"
+#include "boxsim/collision/broad_phase.hpp"
+#include "boxsim/io/atomic_file.hpp"
+#include "boxsim/io/scene.hpp"
+#include "boxsim/io/scene_builders.hpp"
+
+namespace {
+
+using namespace boxsim;
+
+constexpr double kDt = 1.0 / 60.0;
+
+/// Collision events and kinetic energy of every frame of the die under one stepper.
+struct DieRun {
+  std::vector<int> events;
+  std::vector<double> kinetic;
+};
+
+DieRun runDie(const std::string& sceneDir, Stepper& stepper, double duration) {
+  World world = loadScene(sceneDir + "/die.json").world;
+  DieRun run;
+  const long steps = std::lround(duration / kDt);
+  for (long k = 0; k < steps; ++k) {
+    run.events.push_back(stepper.step(world, kDt).events);
+    run.kinetic.push_back(world.kineticEnergy());
+  }
+  return run;
+}
+
+void writeStickyCollisions(const std::string& sceneDir, const std::string& out) {
+  AnalyticParams sticky, plain;
+  plain.sticky = false;
+  AnalyticStepper stickyStepper(sticky), plainStepper(plain);
+  BasicCollidingStepper basic;
+  const double duration = 10.0;
+  const DieRun a = runDie(sceneDir, stickyStepper, duration);
+  const DieRun b = runDie(sceneDir, plainStepper, duration);
+  const DieRun c = runDie(sceneDir, basic, duration);
+  std::ostringstream text;
+  text << "# s4_3_sticky_collisions: the die of chapters/impulse_damped/scenes/die.json, dt 1/60 s\n"
+       << "# sticky_speed_m_per_s: " << sticky.stickySpeed << "\n"
+       << "# columns: t events_analytic_sticky kinetic_analytic_sticky events_analytic_plain "
+          "kinetic_analytic_plain events_basic_colliding kinetic_basic_colliding\n";
+  for (std::size_t k = 0; k < a.events.size(); ++k) {
+    char line[256];
+    std::snprintf(line, sizeof line, "%.6f %d %.6e %d %.6e %d %.6e\n", (k + 1) * kDt, a.events[k],
+                  a.kinetic[k], b.events[k], b.kinetic[k], c.events[k], c.kinetic[k]);
+    text << line;
+  }
+  writeFileAtomically(out + "/s4_3_sticky_collisions.dat", text.str());
+}
+
+void writeTowerForces(const std::string& out) {
+  const int count = 10;
+  World world;
+  world.addGround(0.0, 50.0);
+  addTower(world, TowerSpec{count});
+  const std::vector<PointContact> contacts = pointContacts(world, findContacts(world, 1e-6));
+  MatX A;
+  VecX b;
+  contactMatrix(world, contacts, A, b);
+  const LcpResult r = solveContactLcp(A, b);
+  std::vector<double> load(world.bodies.size(), 0.0);
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const PointContact& c = contacts[i];
+    const int upper = world.bodies[c.a].s.x.y() > world.bodies[c.b].s.x.y() ? c.a : c.b;
+    load[upper] += r.f[static_cast<int>(i)] * std::abs(c.normal.y());
+  }
+  std::ostringstream text;
+  text << "# s2_6_tower_forces: a resting tower of " << count
+       << " unit cubes of 1 kg, LCP forces (epsilon 1e-5)\n"
+       << "# columns: level load_N expected_N\n";
+  for (int k = 1; k <= count; ++k)
+    text << k << " " << load[k] << " " << (count - k + 1) * -world.gravity.y() << "\n";
+  writeFileAtomically(out + "/s2_6_tower_forces.dat", text.str());
+}
+
+void writeSolveTimes(const std::string& out) {
+  std::ostringstream text;
+  text << "# s3_3_lcp_solve_time: resting towers of unit cubes, one thread, this machine\n"
+       << "# columns: contacts ms_incremental_cholesky ms_ldlt ms_complete_orthogonal\n";
+  for (int boxes : {1, 2, 4, 8, 16, 32, 64}) {
+    World world;
+    world.addGround(0.0, 50.0);
+    addTower(world, TowerSpec{boxes});
+    const std::vector<PointContact> contacts = pointContacts(world, findContacts(world, 1e-3));
+    MatX A;
+    VecX b;
+    contactMatrix(world, contacts, A, b);
+    text << contacts.size();
+    for (const LcpLinearSolver solver : {LcpLinearSolver::IncrementalCholesky, LcpLinearSolver::Ldlt,
+                                         LcpLinearSolver::CompleteOrthogonal}) {
+      LcpParams params;
+      params.linearSolver = solver;
+      // Repeat for at least 0.1 s, so the clock's resolution does not matter.
+      const auto start = std::chrono::steady_clock::now();
+      int repetitions = 0;
+      double elapsed = 0.0;
+      do {
+        solveContactLcp(A, b, params);
+        ++repetitions;
+        elapsed = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      } while (elapsed < 100.0);
+      text << " " << elapsed / repetitions;
+    }
+    text << "\n";
+  }
+  writeFileAtomically(out + "/s3_3_lcp_solve_time.dat", text.str());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Data of the analytic contact forces chapter's figures"};
+  std::string sceneDir = "chapters/impulse_damped/scenes";
+  std::string out = ".";
+  app.add_option("--scenes", sceneDir, "Folder of the scenes (die.json)")->capture_default_str();
+  app.add_option("--out", out, "Folder the .dat files are written to")->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+  try {
+    writeStickyCollisions(sceneDir, out);
+    writeTowerForces(out);
+    writeSolveTimes(out);
+  } catch (const std::exception& e) {
+    std::cerr << "analytic_lcp_figures: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
