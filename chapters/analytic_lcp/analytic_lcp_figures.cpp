@@ -17,6 +17,7 @@
 #include "boxsim/analytic_lcp/contact_matrix.hpp"
 #include "boxsim/basic_colliding/basic_colliding.hpp"
 #include "boxsim/collision/broad_phase.hpp"
+#include "boxsim/geometric_stability/geometric_stability.hpp"
 #include "boxsim/io/atomic_file.hpp"
 #include "boxsim/io/scene.hpp"
 #include "boxsim/io/scene_builders.hpp"
@@ -125,6 +126,50 @@ void writeSolveTimes(const std::string& out) {
   writeFileAtomically(out + "/s3_3_lcp_solve_time.dat", text.str());
 }
 
+/// Fig. 5.6: a one-box-deep pyramid of base 9 with 5 cm gaps in its rows (side contacts would
+/// make every box unstable, normals off the y axis) and its bottom centre box removed. One row
+/// per box: its centre and half size in the side view, whether it is geometrically stable, and
+/// in the header the LCP size and solve time without and with the §5.4 exclusion.
+void writePyramidStability(const std::string& out) {
+  World world;
+  world.addGround(0.0, 50.0);
+  const int base = 9;
+  addPyramid(world, PyramidSpec{base, 1.0, 1.0, Vec3::Zero(), 0.05});
+  const int removed = 1 + base / 2;  // bottom row first, after the ground
+  world.bodies.erase(world.bodies.begin() + removed);
+  world.names.erase(world.names.begin() + removed);
+  const std::vector<char> stable = setGeometricallyStable(world, findContacts(world, 1e-6));
+  std::ostringstream text;
+  text << "# fig5_6_pyramid_stability: pyramid of base " << base
+       << ", gaps 0.05 m, bottom centre box removed; side view\n";
+  for (const bool exclusion : {false, true}) {
+    AnalyticParams params;
+    params.useGeometricStability = exclusion;
+    const AnalyticStepper stepper(params);
+    const auto start = std::chrono::steady_clock::now();
+    int repetitions = 0;
+    double elapsed = 0.0;
+    do {
+      stepper.contactWrenches(world, kDt);
+      ++repetitions;
+      elapsed = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    } while (elapsed < 100.0);
+    char line[160];
+    std::snprintf(line, sizeof line, "# %s: %d contacts, %.2f ms\n",
+                  exclusion ? "with_exclusion" : "full_lcp", stepper.lastLcpSize(),
+                  elapsed / repetitions);
+    text << line;
+  }
+  text << "# columns: x y half_x half_y stable\n";
+  for (std::size_t k = 0; k < world.bodies.size(); ++k) {
+    const RigidBody& b = world.bodies[k];
+    if (b.immovable) continue;
+    text << b.s.x.x() << " " << b.s.x.y() << " " << b.halfExtents.x() << " " << b.halfExtents.y()
+         << " " << int(stable[k]) << "\n";
+  }
+  writeFileAtomically(out + "/fig5_6_pyramid_stability.dat", text.str());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -138,6 +183,7 @@ int main(int argc, char** argv) {
     writeStickyCollisions(sceneDir, out);
     writeTowerForces(out);
     writeSolveTimes(out);
+    writePyramidStability(out);
   } catch (const std::exception& e) {
     std::cerr << "analytic_lcp_figures: " << e.what() << "\n";
     return 1;
