@@ -112,7 +112,8 @@ void addRunCommand(CLI::App& app) {
   for (const std::string& m : methodNames()) methods += (methods.empty() ? "" : ", ") + m;
   cmd->add_option("--method,-m", args->method, "Technique: " + methods)->capture_default_str();
   cmd->add_option("--integrator", args->integrator,
-                  "Integrator between collisions: forward_euler, semi_implicit_euler "
+                  "Integrator between collisions: forward_euler, semi_implicit_euler, "
+                  "runge_kutta_4 "
                   "(basic_colliding and analytic; default: semi_implicit_euler)");
   cmd->add_option("--contact-normal", args->contactNormal,
                   "Contact normal model of impulse and damped: separating_axis, "

@@ -8,6 +8,7 @@ std::string integratorName(Integrator integrator) {
   switch (integrator) {
     case Integrator::ForwardEuler: return "forward_euler";
     case Integrator::SemiImplicitEuler: return "semi_implicit_euler";
+    case Integrator::RungeKutta4: return "runge_kutta_4";
   }
   return "unknown";
 }
@@ -15,8 +16,9 @@ std::string integratorName(Integrator integrator) {
 Integrator parseIntegrator(const std::string& name) {
   if (name == "forward_euler") return Integrator::ForwardEuler;
   if (name == "semi_implicit_euler") return Integrator::SemiImplicitEuler;
+  if (name == "runge_kutta_4") return Integrator::RungeKutta4;
   throw std::invalid_argument("unknown integrator '" + name +
-                              "'; use forward_euler or semi_implicit_euler");
+                              "'; use forward_euler, semi_implicit_euler or runge_kutta_4");
 }
 
 namespace {
@@ -27,6 +29,44 @@ void rotate(BodyState& s, const Vec3& omega, double dt) {
   s.q.coeffs() += (0.5 * dt) * dq.coeffs();
   s.q.normalize();
 }
+/// The time derivative of a body's state (Witkin & Baraff, rigid body dynamics §2), with the
+/// force and torque held constant.
+struct StateRate {
+  Vec3 x, P, L;
+  Eigen::Vector4d q;
+};
+
+StateRate stateRate(const RigidBody& body, const BodyState& s, const Vec3& force,
+                    const Vec3& torque) {
+  const Mat3 R = s.q.normalized().toRotationMatrix();
+  const Vec3 omega = R * body.IbodyInvDiag.asDiagonal() * R.transpose() * s.L;
+  const Quat w(0.0, omega.x(), omega.y(), omega.z());
+  return StateRate{body.invMass * s.P, force, torque, 0.5 * (w * s.q).coeffs()};
+}
+
+BodyState advanced(const BodyState& s, const StateRate& rate, double h) {
+  BodyState t = s;
+  t.x += h * rate.x;
+  t.P += h * rate.P;
+  t.L += h * rate.L;
+  t.q.coeffs() += h * rate.q;
+  return t;
+}
+
+void rungeKutta4(RigidBody& body, double dt, const Vec3& force, const Vec3& torque) {
+  const BodyState s = body.s;
+  const StateRate k1 = stateRate(body, s, force, torque);
+  const StateRate k2 = stateRate(body, advanced(s, k1, 0.5 * dt), force, torque);
+  const StateRate k3 = stateRate(body, advanced(s, k2, 0.5 * dt), force, torque);
+  const StateRate k4 = stateRate(body, advanced(s, k3, dt), force, torque);
+  const double sixth = dt / 6.0;
+  body.s.x += sixth * (k1.x + 2.0 * k2.x + 2.0 * k3.x + k4.x);
+  body.s.P += sixth * (k1.P + 2.0 * k2.P + 2.0 * k3.P + k4.P);
+  body.s.L += sixth * (k1.L + 2.0 * k2.L + 2.0 * k3.L + k4.L);
+  body.s.q.coeffs() += sixth * (k1.q + 2.0 * k2.q + 2.0 * k3.q + k4.q);
+  body.s.q.normalize();
+}
+
 }  // namespace
 
 void integrateBody(RigidBody& body, double dt, const Vec3& gravity, Integrator integrator,
@@ -42,6 +82,9 @@ void integrateBody(RigidBody& body, double dt, const Vec3& gravity, Integrator i
       s.P += dt * force;
       // Gravity pulls at the centre of mass: only an extra torque changes L.
       if (torque) s.L += dt * extra.torque;
+      break;
+    case Integrator::RungeKutta4:
+      rungeKutta4(body, dt, force, extra.torque);
       break;
     case Integrator::SemiImplicitEuler:
       s.P += dt * force;

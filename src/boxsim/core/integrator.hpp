@@ -19,9 +19,14 @@ enum class Integrator {
   /// P += Δt m g first, then x += Δt v(t+Δt); q advances with ω(t) as in ForwardEuler (with no
   /// torque L is constant, so the two differ only through R). First order, symplectic.
   SemiImplicitEuler,
+  /// The classical fourth-order Runge-Kutta method on the whole state (x, q, P, L), forces
+  /// held constant over the step, q renormalised at the end. Exact up to rounding for motion
+  /// under constant force (a polynomial of degree 2 in time); the §6.2 footnote asks whether
+  /// such a method would follow a rotating group better.
+  RungeKutta4,
 };
 
-/// "forward_euler" or "semi_implicit_euler".
+/// "forward_euler", "semi_implicit_euler" or "runge_kutta_4".
 std::string integratorName(Integrator integrator);
 /// Parses the names of integratorName(); throws std::invalid_argument on an unknown name,
 /// listing the valid ones.
@@ -36,7 +41,8 @@ struct Wrench {
 /// Advances one body by dt (s, may be 0) under gravity (m/s^2) and `extra` (constant over dt;
 /// none by default); the quaternion is renormalised after the step. Immovable bodies do not
 /// move. With a torque, ForwardEuler turns q with ω(t) and then adds Δt τ to L;
-/// SemiImplicitEuler adds Δt τ to L first and turns q with ω = I⁻¹(t) L(t+Δt).
+/// SemiImplicitEuler adds Δt τ to L first and turns q with ω = I⁻¹(t) L(t+Δt); RungeKutta4
+/// integrates ẋ = P/m, q̇ = ½ ω q with ω = I⁻¹(q) L, Ṗ = m g + F, L̇ = τ.
 void integrateBody(RigidBody& body, double dt, const Vec3& gravity, Integrator integrator,
                    const Wrench& extra = {});
 
