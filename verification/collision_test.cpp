@@ -529,3 +529,31 @@ TEST_CASE("findContacts reports each penetrating pair once with normals from a t
   CHECK(near[1].depth == Approx(-0.2).margin(kRound));
   CHECK(firstIntersectingPair(world, -0.25) == std::make_pair(0, 2));
 }
+
+TEST_CASE("The contact area of a cube turned 45 degrees on another is an octagon (thesis 3.2)",
+          "[collision][manifold][contact_area]") {
+  // Two unit cubes face to face, the upper turned 45° about y: the overlap of the two squares
+  // is a regular octagon, all of whose vertices lie on the touching plane y = 1.
+  const Obb lower{Vec3(0.0, 0.5, 0.0), Mat3::Identity(), Vec3::Constant(0.5)};
+  const Obb upper{Vec3(0.0, 1.5, 0.0),
+                  Eigen::AngleAxisd(kPi / 4.0, Vec3::UnitY()).toRotationMatrix(),
+                  Vec3::Constant(0.5)};
+  const SeparatingAxisResult sat = separatingAxisTest(lower, upper);
+  const std::vector<ContactPoint> area = contactArea(lower, upper, sat, 1e-6);
+  REQUIRE(area.size() == 8);
+  // Octagon of the overlap: vertices at distance 0.5 / cos(22.5°) from the axis.
+  const double radius = 0.5 / std::cos(kPi / 8.0);
+  for (const ContactPoint& p : area) {
+    CHECK(p.position.y() == Approx(1.0).margin(1e-12));
+    CHECK(std::hypot(p.position.x(), p.position.z()) == Approx(radius).epsilon(1e-12));
+  }
+  // The manifold keeps four of them.
+  const ContactManifold m = buildContactManifold(lower, upper, sat, 1e-6);
+  REQUIRE(m.count == 4);
+  for (int k = 0; k < 4; ++k) {
+    bool found = false;
+    for (const ContactPoint& p : area)
+      found = found || (p.position == m.points[k].position && p.featureId == m.points[k].featureId);
+    CHECK(found);
+  }
+}

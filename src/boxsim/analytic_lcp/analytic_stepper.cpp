@@ -8,6 +8,7 @@
 #include "boxsim/analytic_lcp/contact_matrix.hpp"
 #include "boxsim/collision/broad_phase.hpp"
 #include "boxsim/collision/contact_manifold.hpp"
+#include "boxsim/collision/separating_axis.hpp"
 
 namespace boxsim {
 
@@ -32,6 +33,7 @@ std::map<std::string, std::string> AnalyticStepper::parameters() const {
           {"lcp_clamp_negative_forces", params_.lcp.clampNegativeForces ? "on" : "off"},
           {"contact_margin_m", shortestText(params_.contactMargin)},
           {"resting_speed_m_per_s", shortestText(params_.restingSpeed)},
+          {"full_contact_area", params_.fullContactArea ? "on" : "off"},
           {"drift_correction", params_.driftCorrection ? "on" : "off"},
           {"drift_beta", shortestText(params_.driftBeta)},
           {"geometric_stability", params_.useGeometricStability ? "on" : "off"},
@@ -62,15 +64,22 @@ std::vector<Wrench> AnalyticStepper::contactWrenches(const World& world, double 
   std::vector<double> approach, depth;
   for (const ContactManifold& m : manifolds) {
     if (!stable.empty() && stable[m.a] && stable[m.b]) continue;
-    const std::vector<PointContact> points = pointContacts(world, {m});
-    for (int k = 0; k < m.count; ++k) {
-      const PointContact& c = points[k];
+    // §3.2: the vertices of the contact area, or the manifold's reduced points.
+    const std::vector<ContactPoint> area =
+        params_.fullContactArea && m.kind != AxisKind::EdgeEdge
+            ? contactArea(Obb::of(world.bodies[m.a]), Obb::of(world.bodies[m.b]),
+                          separatingAxisTest(Obb::of(world.bodies[m.a]), Obb::of(world.bodies[m.b])),
+                          params_.contactMargin)
+            : std::vector<ContactPoint>(m.points.begin(), m.points.begin() + m.count);
+    const Vec3 normalRate = pointContacts(world, {m}).front().normalRate;
+    for (const ContactPoint& p : area) {
+      const PointContact c{m.a, m.b, p.position, m.normal, normalRate};
       const double vRel = c.normal.dot(world.bodies[c.b].pointVelocity(c.point) -
                                        world.bodies[c.a].pointVelocity(c.point));
       if (std::abs(vRel) > params_.restingSpeed) continue;
       resting.push_back(c);
       approach.push_back(vRel);
-      depth.push_back(m.points[k].depth);
+      depth.push_back(p.depth);
     }
   }
   std::vector<Wrench> wrenches(world.bodies.size());

@@ -46,6 +46,10 @@ struct AnalyticParams {
   /// one 60 Hz step of gravity cannot build from rest in a tenth of a step, well above the
   /// rounding of a resting stack, below any visible bounce.
   double restingSpeed = 1e-2;
+  /// Contact points of face contacts: every vertex of the contact area (up to 8, \thesis{§3.2};
+  /// contactArea in collision/contact_manifold.hpp) when true, the manifold's at most 4 when
+  /// false. The forces differ, the accelerations do not.
+  bool fullContactArea = true;
   /// Drift correction of resting contacts, on by default:
   /// DEVIATION(\thesis{§3.3.1}, Baraff 1994 §2): the LCP asks each resting contact for
   /// a_i >= −v_i / Δt − β d_i / Δt² instead of a_i >= 0. Here v_i is the contact's normal

@@ -47,6 +47,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace boxsim {
 namespace {
@@ -184,7 +185,7 @@ std::array<int, 4> reduceToFour(const std::array<FacePoint, 8>& pts, int count, 
 /// Face contact: clip the incident face of one box against the reference face of the other.
 /// Fills the points, count and depth of `m`, whose other fields the caller has set.
 void faceContact(const Obb& a, const Obb& b, const SeparatingAxisResult& sat, double margin,
-                 ContactManifold& m) {
+                 ContactManifold& m, std::vector<ContactPoint>* area = nullptr) {
   const bool refIsA = sat.kind == AxisKind::FaceA;
   const Obb& ref = refIsA ? a : b;
   const Obb& inc = refIsA ? b : a;
@@ -257,6 +258,12 @@ void faceContact(const Obb& a, const Obb& b, const SeparatingAxisResult& sat, do
                   (static_cast<std::uint32_t>(poly.v[k].outLabel) << 3);
   }
 
+  if (area) {
+    // The whole contact area (§3.2), before the reduction to four.
+    area->clear();
+    for (int k = 0; k < count; ++k) area->push_back({kept[k].position, kept[k].depth, kept[k].featureId});
+    return;
+  }
   const auto put = [&m](int slot, const FacePoint& c) {
     m.points[slot].position = c.position;
     m.points[slot].depth = c.depth;
@@ -338,6 +345,16 @@ ContactManifold buildContactManifold(const Obb& a, const Obb& b, const Separatin
   else
     faceContact(a, b, sat, margin, m);
   return m;
+}
+
+std::vector<ContactPoint> contactArea(const Obb& a, const Obb& b, const SeparatingAxisResult& sat,
+                                      double margin) {
+  ContactManifold m = buildContactManifold(a, b, sat, margin);
+  if (sat.depth <= -margin || sat.kind == AxisKind::EdgeEdge)
+    return std::vector<ContactPoint>(m.points.begin(), m.points.begin() + m.count);
+  std::vector<ContactPoint> area;
+  faceContact(a, b, sat, margin, m, &area);
+  return area;
 }
 
 ContactManifold collideBoxes(const Obb& a, const Obb& b, double margin,

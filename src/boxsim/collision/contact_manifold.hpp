@@ -4,6 +4,8 @@
 /// by the closest points of the two edges.
 #pragma once
 
+#include <vector>
+
 #include "boxsim/collision/contact.hpp"
 #include "boxsim/collision/separating_axis.hpp"
 
@@ -27,6 +29,14 @@ namespace boxsim {
 /// ODE's dBoxBox, written anew.
 ContactManifold buildContactManifold(const Obb& a, const Obb& b, const SeparatingAxisResult& sat,
                                      double margin = 0.0);
+
+/// Every point of the contact area of boxes A and B for the axis `sat` (\thesis{§3.2}): for a
+/// face contact, each vertex of the incident face clipped to the reference face that lies
+/// within `margin` (up to 8; buildContactManifold keeps 4 of them), with the same positions,
+/// depths and feature ids; for an edge–edge contact, its one point; none when the boxes are
+/// `margin` or more apart.
+std::vector<ContactPoint> contactArea(const Obb& a, const Obb& b, const SeparatingAxisResult& sat,
+                                      double margin = 0.0);
 
 /// separatingAxisTest followed by buildContactManifold: the narrow phase for one pair.
 ContactManifold collideBoxes(const Obb& a, const Obb& b, double margin = 0.0,
