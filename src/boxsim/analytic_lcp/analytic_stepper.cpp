@@ -9,6 +9,7 @@
 #include "boxsim/collision/broad_phase.hpp"
 #include "boxsim/collision/contact_manifold.hpp"
 #include "boxsim/collision/separating_axis.hpp"
+#include "boxsim/core/newtonian_impulse.hpp"
 
 namespace boxsim {
 
@@ -45,72 +46,46 @@ std::vector<Wrench> AnalyticStepper::contactWrenches(const World& world, double 
   const std::vector<ContactManifold> manifolds = findContacts(world, params_.contactMargin);
   // §5.4: stable bodies stand in the LCP as immovable; their mutual contacts leave it.
   std::vector<char> stable;
-  World standIns;
-  const World* system = &world;
-  if (params_.useGeometricStability) {
+  if (params_.useGeometricStability)
     stable = setGeometricallyStable(world, manifolds, params_.geometricStability);
-    standIns = world;
-    for (std::size_t k = 0; k < standIns.bodies.size(); ++k) {
-      RigidBody& body = standIns.bodies[k];
-      if (!stable[k] || body.immovable) continue;
-      body.immovable = true;
-      body.invMass = 0.0;
-      body.IbodyInvDiag = Vec3::Zero();
-      body.updateDerived();
-    }
-    system = &standIns;
-  }
   std::vector<PointContact> resting;
   std::vector<double> approach, depth;
   for (const ContactManifold& m : manifolds) {
     if (!stable.empty() && stable[m.a] && stable[m.b]) continue;
     // §3.2: the vertices of the contact area, or the manifold's reduced points.
+    const Obb boxA = Obb::of(world.bodies[m.a]), boxB = Obb::of(world.bodies[m.b]);
     const std::vector<ContactPoint> area =
         params_.fullContactArea && m.kind != AxisKind::EdgeEdge
-            ? contactArea(Obb::of(world.bodies[m.a]), Obb::of(world.bodies[m.b]),
-                          separatingAxisTest(Obb::of(world.bodies[m.a]), Obb::of(world.bodies[m.b])),
-                          params_.contactMargin)
+            ? contactArea(boxA, boxB, separatingAxisTest(boxA, boxB), params_.contactMargin)
             : std::vector<ContactPoint>(m.points.begin(), m.points.begin() + m.count);
-    const Vec3 normalRate = pointContacts(world, {m}).front().normalRate;
+    const Vec3 rate = normalRate(world, m);
     for (const ContactPoint& p : area) {
-      const PointContact c{m.a, m.b, p.position, m.normal, normalRate};
-      const double vRel = c.normal.dot(world.bodies[c.b].pointVelocity(c.point) -
-                                       world.bodies[c.a].pointVelocity(c.point));
+      const double vRel =
+          relativeNormalVelocity(world.bodies[m.a], world.bodies[m.b], p.position, m.normal);
       if (std::abs(vRel) > params_.restingSpeed) continue;
-      resting.push_back(c);
+      resting.push_back(PointContact{m.a, m.b, p.position, m.normal, rate});
       approach.push_back(vRel);
       depth.push_back(p.depth);
     }
   }
+  lastLcpSize_ = static_cast<int>(resting.size());
   std::vector<Wrench> wrenches(world.bodies.size());
-  // A stable body is held: no acceleration, linear or angular (ω̇ = I⁻¹ (τ + L × ω) = 0).
+  if (!resting.empty()) {
+    MatX A;
+    VecX b;
+    contactMatrix(world, resting, A, b, stable);
+    if (params_.driftCorrection && dt > 0.0)
+      for (int i = 0; i < b.size(); ++i)
+        b[i] += approach[i] / dt - params_.driftBeta * std::max(0.0, depth[i]) / (dt * dt);
+    wrenches = boxsim::contactWrenches(world, resting, solveContactLcp(A, b, params_.lcp).f);
+  }
+  // A stable body is held: no acceleration, linear or angular (ω̇ = I⁻¹ (τ + L × ω) = 0); the
+  // contact forces on it change nothing.
   for (std::size_t k = 0; k < stable.size(); ++k) {
     const RigidBody& body = world.bodies[k];
     if (!stable[k] || body.immovable) continue;
     wrenches[k].force = -body.mass * world.gravity;
     wrenches[k].torque = -body.s.L.cross(body.omega);
-  }
-  lastLcpSize_ = static_cast<int>(resting.size());
-  if (resting.empty()) return wrenches;
-  MatX A;
-  VecX b;
-  contactMatrix(*system, resting, A, b);
-  if (params_.driftCorrection && dt > 0.0)
-    for (int i = 0; i < b.size(); ++i)
-      b[i] += approach[i] / dt - params_.driftBeta * std::max(0.0, depth[i]) / (dt * dt);
-  const LcpResult r = solveContactLcp(A, b, params_.lcp);
-  for (std::size_t i = 0; i < resting.size(); ++i) {
-    const PointContact& c = resting[i];
-    const Vec3 F = r.f[static_cast<int>(i)] * c.normal;
-    // Forces on stable bodies change nothing: they are held.
-    if (stable.empty() || !stable[c.b]) {
-      wrenches[c.b].force += F;
-      wrenches[c.b].torque += (c.point - world.bodies[c.b].s.x).cross(F);
-    }
-    if (stable.empty() || !stable[c.a]) {
-      wrenches[c.a].force -= F;
-      wrenches[c.a].torque -= (c.point - world.bodies[c.a].s.x).cross(F);
-    }
   }
   return wrenches;
 }
@@ -128,11 +103,10 @@ StepStats AnalyticStepper::step(World& world, double dt) {
   // resting contact: its LCP force and the drift correction mend the overlap, no bisection.
   hooks.notColliding = [this](const World& w, int i, int j) {
     const ContactManifold m = collideBoxes(Obb::of(w.bodies[i]), Obb::of(w.bodies[j]), 0.0);
-    for (int k = 0; k < m.count; ++k) {
-      const Vec3& p = m.points[k].position;
-      const double vRel = m.normal.dot(w.bodies[j].pointVelocity(p) - w.bodies[i].pointVelocity(p));
-      if (vRel < -params_.restingSpeed) return false;
-    }
+    for (int k = 0; k < m.count; ++k)
+      if (relativeNormalVelocity(w.bodies[i], w.bodies[j], m.points[k].position, m.normal) <
+          -params_.restingSpeed)
+        return false;
     return true;
   };
   hooks.everyPoint = true;

@@ -24,6 +24,7 @@
 
 #include "boxsim/analytic_lcp/lcp_solver.hpp"
 #include "boxsim/collision/contact.hpp"
+#include "boxsim/core/integrator.hpp"
 #include "boxsim/core/world.hpp"
 
 namespace boxsim {
@@ -37,17 +38,28 @@ struct PointContact {
   Vec3 normalRate = Vec3::Zero();    ///< ṅ, 1/s: how the normal turns with its body
 };
 
+/// ṅ of a manifold's normal (1/s): ω × n of the body whose face gives the normal (FaceA: a,
+/// FaceB: b); for an edge-edge contact, the derivative of the normalised cross product of the two
+/// edges as each turns with its body (0 for near-parallel edges).
+Vec3 normalRate(const World& world, const ContactManifold& m);
+
 /// The point contacts of contact manifolds (collision/contact_manifold.hpp): every manifold
-/// point becomes a contact with the manifold's normal. ṅ is ω × n of the body whose face gives
-/// the normal (FaceA: a, FaceB: b); for an edge-edge contact, the derivative of the normalised
-/// cross product of the two edges as each turns with its body.
+/// point becomes a contact with the manifold's normal and its normalRate.
 std::vector<PointContact> pointContacts(const World& world,
                                         const std::vector<ContactManifold>& manifolds);
 
 /// A and b of the file comment for the given contacts: A is n × n, b has n entries (m/s² per N
-/// and m/s²). External forces are gravity only. Throws std::invalid_argument for a contact
-/// whose body index is out of range or whose normal is not unit length (within 1e-9).
-void contactMatrix(const World& world, const std::vector<PointContact>& contacts, MatX& A, VecX& b);
+/// and m/s²). External forces are gravity only. Bodies flagged in `held` (empty, or one flag per
+/// body) count as immovable: no velocity, no acceleration, no share of A (the geometrically
+/// stable bodies of \thesis{§5.4}). Throws std::invalid_argument for a contact whose body index
+/// is out of range or whose normal is not unit length (within 1e-9).
+void contactMatrix(const World& world, const std::vector<PointContact>& contacts, MatX& A, VecX& b,
+                   const std::vector<char>& held = {});
+
+/// The force (N) and torque (N m, about the centre of mass) the contact forces f put on each
+/// body: f_i n_i on b_i and −f_i n_i on a_i at p_i. One wrench per body of the world.
+std::vector<Wrench> contactWrenches(const World& world, const std::vector<PointContact>& contacts,
+                                    const VecX& f);
 
 /// The acceleration of each body under gravity and the contact forces f (N, one per contact):
 /// linear (m/s²) and angular (rad/s², ω̇ = I⁻¹ (τ + L × ω)). Immovable bodies get zeros.
