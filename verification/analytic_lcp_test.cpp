@@ -7,11 +7,16 @@
 #include <algorithm>
 #include <cmath>
 
+#include "boxsim/analytic_lcp/contact_matrix.hpp"
 #include "boxsim/analytic_lcp/lcp_enumeration.hpp"
 #include "boxsim/analytic_lcp/lcp_solver.hpp"
+#include "boxsim/collision/broad_phase.hpp"
+#include "boxsim/io/scene_builders.hpp"
 #include "seeded_random.hpp"
+#include "test_worlds.hpp"
 
 using namespace boxsim;
+using boxsim::testing::groundWorld;
 using boxsim::testing::SeededRandom;
 
 namespace {
@@ -143,19 +148,10 @@ TEST_CASE("Bad LCP input is refused with the shapes named", "[analytic_lcp][lcp]
 // ---------------------------------------------------------------------------------------------
 // The contact matrix of a world (contact_matrix.hpp).
 
-#include "boxsim/analytic_lcp/contact_matrix.hpp"
-#include "boxsim/collision/broad_phase.hpp"
-#include "boxsim/io/scene_builders.hpp"
 
 namespace {
 
 constexpr double kG = 9.81;
-
-World restingWorld() {
-  World world;
-  world.addGround(0.0, 50.0);
-  return world;
-}
 
 /// Solves the world's contact LCP as it stands and returns the forces with the contacts.
 std::pair<std::vector<PointContact>, LcpResult> solveWorld(const World& world) {
@@ -181,7 +177,7 @@ double largestAcceleration(const World& world, const std::vector<PointContact>& 
 
 TEST_CASE("A cube resting on the ground: the contact forces carry its weight and it does not accelerate",
           "[analytic_lcp][contact_matrix]") {
-  World world = restingWorld();
+  World world = groundWorld();
   addTower(world, TowerSpec{1});
   const auto [contacts, r] = solveWorld(world);
   REQUIRE(contacts.size() == 4);
@@ -195,7 +191,7 @@ TEST_CASE("A cube resting on the ground: the contact forces carry its weight and
 
 TEST_CASE("A tower of 6: each level's contacts carry the weight above them",
           "[analytic_lcp][contact_matrix]") {
-  World world = restingWorld();
+  World world = groundWorld();
   const int count = 6;
   addTower(world, TowerSpec{count});
   const auto [contacts, r] = solveWorld(world);
@@ -224,7 +220,7 @@ TEST_CASE("A tower of 6: each level's contacts carry the weight above them",
 }
 
 TEST_CASE("A pyramid of base 4 stands under its LCP forces", "[analytic_lcp][contact_matrix]") {
-  World world = restingWorld();
+  World world = groundWorld();
   addPyramid(world, PyramidSpec{4});
   const auto [contacts, r] = solveWorld(world);
   REQUIRE(r.converged);
@@ -243,7 +239,7 @@ TEST_CASE("The contact matrix matches accelerations computed body by body", "[an
   // kinematics p̈ = v̇ + ω̇ × r + ω × (ω × r), a second path to the same quantities.
   SeededRandom random(31);
   for (int trial = 0; trial < 50; ++trial) {
-    World world = restingWorld();
+    World world = groundWorld();
     for (int k = 0; k < 4; ++k) {
       RigidBody box = RigidBody::box(random.vector(0.2, 1.0), random.uniform(0.5, 3.0));
       box.s.x = random.vector(-2.0, 2.0);

@@ -6,18 +6,14 @@
 #include "boxsim/analytic_lcp/analytic_stepper.hpp"
 #include "boxsim/io/scene_builders.hpp"
 #include "boxsim/techniques.hpp"
+#include "test_worlds.hpp"
 
 using namespace boxsim;
+using boxsim::testing::groundWorld;
 
 namespace {
 
 constexpr double kDt = 1.0 / 60.0;
-
-World groundWorld() {
-  World world;
-  world.addGround(0.0, 50.0);
-  return world;
-}
 
 }  // namespace
 

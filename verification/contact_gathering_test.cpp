@@ -11,9 +11,11 @@
 #include "boxsim/impulse_damped/contact_gathering.hpp"
 #include "boxsim/impulse_damped/impulse_stepper.hpp"
 #include "seeded_random.hpp"
+#include "test_worlds.hpp"
 
 using namespace boxsim;
 using boxsim::testing::SeededRandom;
+using boxsim::testing::groundWorld;
 
 namespace {
 
@@ -40,8 +42,7 @@ std::map<std::pair<int, int>, double> gathered(World world, ContactGathering& ga
 /// Twelve unit cubes in a 3 m box above the ground, a third of them fast (up to 8 m/s and
 /// 6 rad/s, several contacts' worth of motion per step), the rest slow.
 World randomScene(SeededRandom& random) {
-  World world;
-  world.addGround(0.0, 50.0);
+  World world = groundWorld();
   for (int i = 0; i < 12; ++i) {
     RigidBody box = RigidBody::box(Vec3::Constant(0.5), 1.0);
     box.s.x = Vec3(random.uniform(-1.5, 1.5), random.uniform(0.3, 3.0), random.uniform(-1.5, 1.5));
@@ -107,8 +108,7 @@ TEST_CASE("For slow bodies the Taylor prediction matches the moved pose to its r
   // Δt³ |ω|³ ρ / 6 plus the quaternion step's own O(Δt³ |ω|³) error, both below 1e-6 m here.
   SeededRandom random(7);
   for (int k = 0; k < 200; ++k) {
-    World world;
-    world.addGround(0.0, 50.0);
+    World world = groundWorld();
     RigidBody box = RigidBody::box(Vec3::Constant(0.5), 1.0);
     box.s.q = Quat(Eigen::AngleAxisd(random.uniform(-0.05, 0.05), random.vector(-1, 1).normalized()));
     box.s.x = Vec3(random.uniform(-1, 1), 0.5 + random.uniform(-2e-3, 2e-3), random.uniform(-1, 1));
@@ -134,8 +134,7 @@ TEST_CASE("Both gatherings give the same bounce of a dropped cube", "[impulse_da
   // when it rests; its rebound apex must agree to rounding, and both rest at the same height.
   double apex[2] = {0.0, 0.0}, rest[2] = {0.0, 0.0};
   for (int mode = 0; mode < 2; ++mode) {
-    World world;
-    world.addGround(0.0, 50.0);
+    World world = groundWorld();
     RigidBody box = RigidBody::box(Vec3::Constant(0.5), 1.0);
     box.s.x = Vec3(0.0, 1.5, 0.0);
     box.updateDerived();

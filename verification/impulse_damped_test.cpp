@@ -13,18 +13,14 @@
 #include "boxsim/impulse_damped/dampen_objects.hpp"
 #include "boxsim/impulse_damped/impulse_stepper.hpp"
 #include "boxsim/io/scene_builders.hpp"
+#include "test_worlds.hpp"
 
 using namespace boxsim;
+using boxsim::testing::groundWorld;
 
 namespace {
 
 constexpr double kDt = 1.0 / 60.0;
-
-World groundWorld() {
-  World world;
-  world.addGround(0.0, 50.0);
-  return world;
-}
 
 World dieWorld() {
   World world = groundWorld();

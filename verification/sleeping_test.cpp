@@ -16,8 +16,10 @@
 #include "boxsim/impulse_damped/visual_plausibility.hpp"
 #include "boxsim/io/scene_builders.hpp"
 #include "boxsim/io/simulate.hpp"
+#include "test_worlds.hpp"
 
 using namespace boxsim;
+using boxsim::testing::groundWorld;
 
 namespace {
 
@@ -26,12 +28,6 @@ constexpr double kDt = 1.0 / 60.0;
 const long kStepsToSleep = std::lround(SleepParams{}.timeToSleep / kDt);
 /// The FIXCONTACTCONSTRAINTS slop for unit cubes (ℓ = 0.5 m), m.
 const double kSlop = FixContactParams{}.slop * 0.5;
-
-World groundWorld() {
-  World world;
-  world.addGround(0.0, 50.0);
-  return world;
-}
 
 /// Adds a unit cube (1 kg) at `centre` with velocity `v`; returns its index.
 int addCube(World& world, const Vec3& centre, const Vec3& v = Vec3::Zero()) {

@@ -68,15 +68,23 @@ void writeStickyCollisions(const std::string& sceneDir, const std::string& out) 
   writeFileAtomically(out + "/s4_3_sticky_collisions.dat", text.str());
 }
 
-void writeTowerForces(const std::string& out) {
-  const int count = 10;
+/// A resting tower of `boxes` unit cubes on the ground, and the contact LCP (A, b) of the
+/// contacts closer than `margin` m.
+World restingTower(int boxes, double margin, std::vector<PointContact>& contacts, MatX& A, VecX& b) {
   World world;
   world.addGround(0.0, 50.0);
-  addTower(world, TowerSpec{count});
-  const std::vector<PointContact> contacts = pointContacts(world, findContacts(world, 1e-6));
+  addTower(world, TowerSpec{boxes});
+  contacts = pointContacts(world, findContacts(world, margin));
+  contactMatrix(world, contacts, A, b);
+  return world;
+}
+
+void writeTowerForces(const std::string& out) {
+  const int count = 10;
+  std::vector<PointContact> contacts;
   MatX A;
   VecX b;
-  contactMatrix(world, contacts, A, b);
+  const World world = restingTower(count, 1e-6, contacts, A, b);
   const LcpResult r = solveContactLcp(A, b);
   std::vector<double> load(world.bodies.size(), 0.0);
   for (std::size_t i = 0; i < contacts.size(); ++i) {
@@ -98,13 +106,10 @@ void writeSolveTimes(const std::string& out) {
   text << "# s3_3_lcp_solve_time: resting towers of unit cubes, one thread, this machine\n"
        << "# columns: contacts ms_incremental_cholesky ms_ldlt ms_complete_orthogonal\n";
   for (int boxes : {1, 2, 4, 8, 16, 32, 64}) {
-    World world;
-    world.addGround(0.0, 50.0);
-    addTower(world, TowerSpec{boxes});
-    const std::vector<PointContact> contacts = pointContacts(world, findContacts(world, 1e-3));
+    std::vector<PointContact> contacts;
     MatX A;
     VecX b;
-    contactMatrix(world, contacts, A, b);
+    restingTower(boxes, 1e-3, contacts, A, b);
     text << contacts.size();
     for (const LcpLinearSolver solver : {LcpLinearSolver::IncrementalCholesky, LcpLinearSolver::Ldlt,
                                          LcpLinearSolver::CompleteOrthogonal}) {

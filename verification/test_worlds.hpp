@@ -1,0 +1,15 @@
+// Worlds the verification tests start from.
+#pragma once
+
+#include "boxsim/core/world.hpp"
+
+namespace boxsim::testing {
+
+/// An empty world with the usual ground: its top face at y = 0, 100 m square.
+inline World groundWorld() {
+  World world;
+  world.addGround(0.0, 50.0);
+  return world;
+}
+
+}  // namespace boxsim::testing
