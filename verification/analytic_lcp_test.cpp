@@ -72,6 +72,35 @@ TEST_CASE("Baraff's pivoting solves random positive semidefinite LCPs, singular 
   CHECK(singular > 100);
 }
 
+TEST_CASE("Baraff's drive_to_zero as printed, with Gaussian elimination: the thesis' settings",
+          "[analytic_lcp][lcp][thesis]") {
+  // snapToBounds off and Gaussian elimination (thesis §3.3.1) on nonsingular random LCPs: the
+  // conditions still hold, and maxstep keeps every force >= 0 up to the rounding of the
+  // pivots, so the clamp of §3.3.1 has nothing of physical size to remove.
+  SeededRandom random(2003);
+  double mostNegative = 0.0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const int n = random.integer(1, 12);
+    const auto [A, b] = randomLcp(random, n, n + 2);
+    LcpParams params = exact();
+    params.linearSolver = LcpLinearSolver::GaussianElimination;
+    params.snapToBounds = false;
+    params.clampNegativeForces = false;
+    const LcpResult r = solveContactLcp(A, b, params);
+    INFO("trial " << trial << ", n " << n << ": " << r.failure);
+    REQUIRE(r.converged);
+    CHECK(lcpViolation(A, b, r.f) < 1e-7);
+    const double fScale = std::max(1.0, b.cwiseAbs().maxCoeff()) / A.diagonal().maxCoeff();
+    mostNegative = std::min(mostNegative, r.mostNegativeForce / fScale);
+    const std::optional<VecX> reference = enumerateContactLcp(A, b, 1e-9);
+    REQUIRE(reference.has_value());
+    CHECK((r.a - (A * *reference + b)).cwiseAbs().maxCoeff() <
+          1e-6 * std::max(1.0, b.cwiseAbs().maxCoeff()));
+  }
+  // Rounding through at most a few dozen pivots of a well-scaled problem: far below 1e-10.
+  CHECK(mostNegative > -1e-10);
+}
+
 TEST_CASE("Redundant contacts: four coplanar corners give a singular A and still a solution",
           "[analytic_lcp][lcp][singular]") {
   // A unit cube of 1 kg on a plane, four corner contacts: a_i = n · (acceleration of corner i)
@@ -93,7 +122,8 @@ TEST_CASE("Redundant contacts: four coplanar corners give a singular A and still
   const VecX b = VecX::Constant(4, -9.81);  // gravity, at rest
   REQUIRE(A.fullPivLu().rank() == 3);
   for (const LcpLinearSolver solver : {LcpLinearSolver::CompleteOrthogonal, LcpLinearSolver::Ldlt,
-                                       LcpLinearSolver::IncrementalCholesky}) {
+                                       LcpLinearSolver::IncrementalCholesky,
+                                       LcpLinearSolver::GaussianElimination}) {
     LcpParams params;
     params.linearSolver = solver;
     const LcpResult r = solveContactLcp(A, b, params);

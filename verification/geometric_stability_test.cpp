@@ -66,22 +66,19 @@ Names stableNames(const World& world, const GeometricStabilityParams& params = {
 
 // --- the scenes (unit cubes on the ground y = 0 unless said otherwise) ---
 
-/// Fig. 5.3: the upper cube is shifted by 3/4 of its size along x and z, so only one of its
-/// bottom corners lies over the lower cube.
+/// Fig. 5.3 (addOneCornerOver): only one bottom corner of "upper" lies over "lower".
 World fig5_3OneCornerOver() {
   World world;
   world.addGround();
-  addBox(world, "lower", kUnitHalf, Vec3(0.0, 0.5, 0.0));
-  addBox(world, "upper", kUnitHalf, Vec3(0.75, 1.5, 0.75));
+  addOneCornerOver(world);
   return world;
 }
 
-/// Fig. 5.4: a cube anywhere on a wider box that rests on the ground.
+/// Fig. 5.4 (addBoxOnWiderBox): a cube anywhere on a wider box that rests on the ground.
 World fig5_4OnWiderBox(const Quat& topOrientation = Quat::Identity()) {
   World world;
   world.addGround();
-  addBox(world, "base", Vec3(1.5, 0.5, 1.5), Vec3(0.0, 0.5, 0.0));
-  addBox(world, "top", kUnitHalf, Vec3(0.4, 1.5, -0.3), topOrientation);
+  addBoxOnWiderBox(world, topOrientation);
   return world;
 }
 
@@ -95,14 +92,12 @@ World tower5() {
   return world;
 }
 
-/// Fig. 5.5: a 2 x 1 x 1 box bridging two cubes 0.5 m apart; each cube holds two of its
-/// corners. Without the right cube only two corners are held.
+/// Fig. 5.5 (addBridge): a 2 x 1 x 1 box bridging two cubes 0.5 m apart; each cube holds two
+/// of its corners. Without the right cube only two corners are held.
 World fig5_5Bridge(bool withRightSupport = true) {
   World world;
   world.addGround();
-  addBox(world, "left", kUnitHalf, Vec3(-0.75, 0.5, 0.0));
-  if (withRightSupport) addBox(world, "right", kUnitHalf, Vec3(0.75, 0.5, 0.0));
-  addBox(world, "bridge", Vec3(1.0, 0.5, 0.5), Vec3(0.0, 1.5, 0.0));
+  addBridge(world, withRightSupport);
   return world;
 }
 

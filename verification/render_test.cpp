@@ -237,6 +237,32 @@ TEST_CASE("Faces are Lambert-shaded from above: the top of a box is its brightes
   CHECK(faces[0].rgb != faces[2].rgb);
 }
 
+TEST_CASE("Bodies named in bodyColours are filled with their colour; an unknown name is refused",
+          "[render][shading]") {
+  // Two cubes side by side, "dark" given a dark grey: its three faces are shades of that grey
+  // (equal channels, no channel above the unshaded 0x40), the other keeps the palette.
+  const Trajectory two = makeTrajectory(
+      {ground(), cube("dark"), cube("light")},
+      {{groundPose(), {Vec3(-1.0, 0.5, 0.0), Quat::Identity()}, {Vec3(1.0, 0.5, 0.0), Quat::Identity()}}});
+  RenderOptions options;
+  options.bodyColours = {{"dark", 0x404040}};
+  const std::vector<ColouredFace> faces = colouredFaces(boxsim::renderScript(two, "a.png", options));
+  REQUIRE(faces.size() == 6);
+  int grey = 0;
+  for (const ColouredFace& face : faces) {
+    const int r = (face.rgb >> 16) & 0xff, g = (face.rgb >> 8) & 0xff, b = face.rgb & 0xff;
+    if (r == g && g == b && r <= 0x40) ++grey;
+  }
+  CHECK(grey == 3);
+  options.bodyColours = {{"dsrk", 0x404040}};
+  try {
+    boxsim::renderScript(two, "a.png", options);
+    FAIL("an unknown body name was accepted");
+  } catch (const std::invalid_argument& e) {
+    CHECK(std::string(e.what()).find("'dsrk'") != std::string::npos);
+  }
+}
+
 TEST_CASE("A box in any orientation shows three faces, never two opposite ones",
           "[render][geometry]") {
   // Under an orthographic camera exactly one of each pair of opposite faces points at the

@@ -19,6 +19,8 @@
 #include "boxsim/collision/broad_phase.hpp"
 #include "boxsim/geometric_stability/geometric_stability.hpp"
 #include "boxsim/io/atomic_file.hpp"
+#include "boxsim/io/recorder.hpp"
+#include "boxsim/io/render.hpp"
 #include "boxsim/io/scene.hpp"
 #include "boxsim/io/scene_builders.hpp"
 
@@ -131,18 +133,117 @@ void writeSolveTimes(const std::string& out) {
   writeFileAtomically(out + "/s3_3_lcp_solve_time.dat", text.str());
 }
 
+/// The deepest overlap (m) of any pair closer than 1 mm, 0 when none overlaps.
+double deepestOverlap(const World& world) {
+  double deepest = 0.0;
+  for (const ContactManifold& m : findContacts(world, 1e-3))
+    for (int k = 0; k < m.count; ++k) deepest = std::max(deepest, m.points[k].depth);
+  return deepest;
+}
+
+/// §3.3.1's no-clamp failure, measured: a resting tower of 10 under the thesis' own LCP
+/// settings (Gaussian elimination, Baraff's drive_to_zero as printed, no drift correction) with
+/// and without the force clamp, and under the defaults (clamp and drift correction on). Per
+/// frame and run: the most negative LCP force before the clamp and the deepest overlap.
+void writeNoClamp(const std::string& out) {
+  // 15 s: the drift reaches the collision loop's depth tolerance (1e-4 m) near 17 s, after
+  // which every step bisects for a collision.
+  const double duration = 15.0;
+  const long steps = std::lround(duration / kDt);
+  std::vector<std::vector<double>> columns;
+  for (const int run : {0, 1, 2}) {
+    World world;
+    world.addGround(0.0, 50.0);
+    addTower(world, TowerSpec{10});
+    AnalyticParams params;
+    if (run < 2) {
+      params.lcp.linearSolver = LcpLinearSolver::GaussianElimination;
+      params.lcp.snapToBounds = false;
+      params.lcp.clampNegativeForces = run == 0;
+      params.driftCorrection = false;
+    }
+    AnalyticStepper stepper(params);
+    std::vector<double> force, overlap;
+    for (long k = 0; k < steps; ++k) {
+      stepper.step(world, kDt);
+      force.push_back(stepper.lastMostNegativeForce());
+      overlap.push_back(deepestOverlap(world));
+    }
+    columns.push_back(force);
+    columns.push_back(overlap);
+  }
+  std::ostringstream text;
+  text << "# s3_3_no_clamp: resting tower of 10 unit cubes, dt 1/60 s, epsilon 1e-5\n"
+       << "# runs: thesis_clamp and thesis_noclamp (gaussian_elimination, snap_to_bounds off, "
+          "drift_correction off), defaults (incremental_cholesky, clamp, drift_correction on)\n"
+       << "# columns: t, then per run: most_negative_force_N deepest_overlap_m\n";
+  for (long k = 0; k < steps; ++k) {
+    char line[64];
+    std::snprintf(line, sizeof line, "%.6f", (k + 1) * kDt);
+    text << line;
+    for (const std::vector<double>& c : columns) {
+      std::snprintf(line, sizeof line, " %.6e", c[k]);
+      text << line;
+    }
+    text << "\n";
+  }
+  writeFileAtomically(out + "/s3_3_no_clamp.dat", text.str());
+}
+
+/// Fig. 5.6's scene: a one-box-deep pyramid of the given base with 5 cm gaps in its rows and
+/// its bottom centre box left out, on the ground.
+World fig5_6Pyramid(int base) {
+  World world;
+  world.addGround(0.0, 50.0);
+  PyramidSpec spec{base, 1.0, 1.0, Vec3::Zero(), 0.05};
+  spec.omitted = {{0, base / 2}};
+  addPyramid(world, spec);
+  return world;
+}
+
+/// Figs. 5.3–5.6 in 3D: each configuration classified (§5.4) and drawn with its stable
+/// bodies dark grey and the others light grey, as the thesis colours Fig. 5.6.
+void renderStabilityFigures(const std::string& out) {
+  const auto withGround = [](auto add) {
+    World world;
+    world.addGround(0.0, 50.0);
+    add(world);
+    return world;
+  };
+  struct Figure {
+    std::string stem, title;
+    World world;
+  };
+  const std::vector<Figure> figures = {
+      {"fig5_3_one_corner_over", "Fig. 5.3: one corner over the box below - not stable",
+       withGround([](World& w) { addOneCornerOver(w); })},
+      {"fig5_4_on_wider_box", "Fig. 5.4: on a stable box - stable",
+       withGround([](World& w) { addBoxOnWiderBox(w); })},
+      {"fig5_5_bridge", "Fig. 5.5: on two stable boxes - stable",
+       withGround([](World& w) { addBridge(w); })},
+      {"fig5_6_pyramid_3d", "Fig. 5.6: bottom centre removed (dark: stable)", fig5_6Pyramid(9)}};
+  for (const auto& [stem, title, world] : figures) {
+    const std::vector<char> stable = setGeometricallyStable(world, findContacts(world, 1e-6));
+    Recorder recorder(world, {{"scene", stem}});
+    recorder.capture(world, 0.0);
+    RenderOptions options;
+    options.width = 640;
+    options.height = 480;
+    options.title = title;
+    for (std::size_t k = 0; k < world.bodies.size(); ++k)
+      if (!world.bodies[k].immovable)
+        options.bodyColours[world.names[k]] = stable[k] ? 0x666666 : 0xd9d9d9;
+    renderTrajectory(recorder.trajectory(), out + "/" + stem + ".png", options);
+  }
+}
+
 /// Fig. 5.6: a one-box-deep pyramid of base 9 with 5 cm gaps in its rows (side contacts would
 /// make every box unstable, normals off the y axis) and its bottom centre box removed. One row
 /// per box: its centre and half size in the side view, whether it is geometrically stable, and
 /// in the header the LCP size and solve time without and with the §5.4 exclusion.
 void writePyramidStability(const std::string& out) {
-  World world;
-  world.addGround(0.0, 50.0);
   const int base = 9;
-  addPyramid(world, PyramidSpec{base, 1.0, 1.0, Vec3::Zero(), 0.05});
-  const int removed = 1 + base / 2;  // bottom row first, after the ground
-  world.bodies.erase(world.bodies.begin() + removed);
-  world.names.erase(world.names.begin() + removed);
+  const World world = fig5_6Pyramid(base);
   const std::vector<char> stable = setGeometricallyStable(world, findContacts(world, 1e-6));
   std::ostringstream text;
   text << "# fig5_6_pyramid_stability: pyramid of base " << base
@@ -188,7 +289,9 @@ int main(int argc, char** argv) {
     writeStickyCollisions(sceneDir, out);
     writeTowerForces(out);
     writeSolveTimes(out);
+    writeNoClamp(out);
     writePyramidStability(out);
+    renderStabilityFigures(out);
   } catch (const std::exception& e) {
     std::cerr << "analytic_lcp_figures: " << e.what() << "\n";
     return 1;

@@ -32,6 +32,8 @@ std::map<std::string, std::string> AnalyticStepper::parameters() const {
           {"max_impulse_passes", std::to_string(loop.maxImpulsePasses)},
           {"lcp_epsilon_m_per_s2", shortestText(params_.lcp.epsilon)},
           {"lcp_clamp_negative_forces", params_.lcp.clampNegativeForces ? "on" : "off"},
+          {"lcp_linear_solver", lcpLinearSolverName(params_.lcp.linearSolver)},
+          {"lcp_snap_to_bounds", params_.lcp.snapToBounds ? "on" : "off"},
           {"contact_margin_m", shortestText(params_.contactMargin)},
           {"resting_speed_m_per_s", shortestText(params_.restingSpeed)},
           {"full_contact_area", params_.fullContactArea ? "on" : "off"},
@@ -69,6 +71,7 @@ std::vector<Wrench> AnalyticStepper::contactWrenches(const World& world, double 
     }
   }
   lastLcpSize_ = static_cast<int>(resting.size());
+  lastMostNegativeForce_ = 0.0;
   std::vector<Wrench> wrenches(world.bodies.size());
   if (!resting.empty()) {
     MatX A;
@@ -77,7 +80,9 @@ std::vector<Wrench> AnalyticStepper::contactWrenches(const World& world, double 
     if (params_.driftCorrection && dt > 0.0)
       for (int i = 0; i < b.size(); ++i)
         b[i] += approach[i] / dt - params_.driftBeta * std::max(0.0, depth[i]) / (dt * dt);
-    wrenches = boxsim::contactWrenches(world, resting, solveContactLcp(A, b, params_.lcp).f);
+    const LcpResult lcp = solveContactLcp(A, b, params_.lcp);
+    lastMostNegativeForce_ = lcp.mostNegativeForce;
+    wrenches = boxsim::contactWrenches(world, resting, lcp.f);
   }
   // A stable body is held: no acceleration, linear or angular (ω̇ = I⁻¹ (τ + L × ω) = 0); the
   // contact forces on it change nothing.

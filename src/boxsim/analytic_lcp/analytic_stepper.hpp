@@ -94,10 +94,14 @@ class AnalyticStepper final : public Stepper {
   std::vector<Wrench> contactWrenches(const World& world, double dt) const;
   /// Contacts in the last LCP solved by contactWrenches (after any exclusion), for benches.
   int lastLcpSize() const { return lastLcpSize_; }
+  /// N, LcpResult::mostNegativeForce of the last LCP solved: what the force clamp removed (or,
+  /// with it off, left in), for the figure of the failure \thesis{§3.3.1} reports.
+  double lastMostNegativeForce() const { return lastMostNegativeForce_; }
 
  private:
   AnalyticParams params_;
   mutable int lastLcpSize_ = 0;
+  mutable double lastMostNegativeForce_ = 0.0;
 };
 
 }  // namespace boxsim

@@ -121,9 +121,13 @@ VecX forceDirection(const MatX& A, const std::vector<ContactSet>& set, int d,
   // contacts (four coplanar corners on a plane) make it singular; the minimum-norm
   // least-squares solution then still keeps the clamped accelerations at zero when the system
   // is consistent, and spreads the load evenly among the redundant contacts.
-  const VecX x = solver == LcpLinearSolver::CompleteOrthogonal
-                     ? VecX(Acc.completeOrthogonalDecomposition().solve(rhs))
-                     : VecX(Acc.ldlt().solve(rhs));
+  VecX x;
+  if (solver == LcpLinearSolver::CompleteOrthogonal)
+    x = Acc.completeOrthogonalDecomposition().solve(rhs);
+  else if (solver == LcpLinearSolver::GaussianElimination)
+    x = Acc.partialPivLu().solve(rhs);
+  else
+    x = Acc.ldlt().solve(rhs);
   for (int r = 0; r < m; ++r) df[clamped[r]] = x[r];
   return df;
 }
@@ -168,6 +172,16 @@ void requireProblem(const MatX& A, const VecX& b) {
 
 }  // namespace
 
+std::string lcpLinearSolverName(LcpLinearSolver solver) {
+  switch (solver) {
+    case LcpLinearSolver::CompleteOrthogonal: return "complete_orthogonal";
+    case LcpLinearSolver::Ldlt: return "ldlt";
+    case LcpLinearSolver::IncrementalCholesky: return "incremental_cholesky";
+    case LcpLinearSolver::GaussianElimination: return "gaussian_elimination";
+  }
+  return "unknown";
+}
+
 LcpResult solveContactLcp(const MatX& A, const VecX& b, const LcpParams& params) {
   requireProblem(A, b);
   const int n = static_cast<int>(b.size());
@@ -208,17 +222,17 @@ LcpResult solveContactLcp(const MatX& A, const VecX& b, const LcpParams& params)
       a += s * da;
       if (j == d) {
         set[d] = ContactSet::Clamped;
-        a[d] = 0.0;
+        if (params.snapToBounds) a[d] = 0.0;
         if (incremental) factor.append(d);
         break;
       }
       if (set[j] == ContactSet::Clamped) {
         set[j] = ContactSet::NotClamped;
-        f[j] = 0.0;
+        if (params.snapToBounds) f[j] = 0.0;
         if (incremental) factor.remove(j);
       } else {
         set[j] = ContactSet::Clamped;
-        a[j] = 0.0;
+        if (params.snapToBounds) a[j] = 0.0;
         if (incremental) factor.append(j);
       }
     }
@@ -226,6 +240,7 @@ LcpResult solveContactLcp(const MatX& A, const VecX& b, const LcpParams& params)
     // Undriven contacts the ε lets pass keep f = 0, as not clamped ones do.
   }
   // \thesis{§3.3.1}: forces the tolerance left negative would pull the bodies together.
+  if (n > 0) result.mostNegativeForce = std::min(0.0, f.minCoeff());
   if (params.clampNegativeForces) f = f.cwiseMax(0.0);
   a = A * f + b;
   return result;

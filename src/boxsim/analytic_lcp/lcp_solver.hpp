@@ -38,7 +38,16 @@ enum class LcpLinearSolver {
   /// leaves (the updated symmetric factorisation \thesis{§5.3} points to); once a redundant
   /// contact would make A_CC singular, Ldlt for the rest of the solve.
   IncrementalCholesky,
+  /// Gaussian elimination with partial pivoting (Eigen's PartialPivLU), refactored at every
+  /// pivot: what \thesis{§3.3.1} used. On a singular A_CC (redundant contacts) its zero pivot
+  /// is rounding noise, and the direction it returns is noise of that size: kept to reproduce
+  /// the thesis' failure without the force clamp, not for use.
+  GaussianElimination,
 };
+
+/// The solver's name in scene files and output headers: "incremental_cholesky", "ldlt",
+/// "complete_orthogonal" or "gaussian_elimination".
+std::string lcpLinearSolverName(LcpLinearSolver solver);
 
 /// Parameters of solveContactLcp.
 struct LcpParams {
@@ -48,6 +57,12 @@ struct LcpParams {
   /// \thesis{§3.3.1}'s post-processing: forces still negative when the loop ends are set to
   /// zero (they would pull the bodies together). Off reproduces the failure the thesis saw.
   bool clampNegativeForces = true;
+  /// When a pivot moves contact j between the sets, set f_j (leaving the clamped set) or a_j
+  /// (joining it) to exactly 0 rather than to the rounded f_j + s Δf_j or a_j + s Δa_j.
+  /// DEVIATION(Baraff 1994 §5, drive_to_zero as written): with the bound met exactly no
+  /// rounding error accumulates in the sets' conditions over the pivots. Off is Baraff's
+  /// procedure as printed.
+  bool snapToBounds = true;
   /// How fdirection's linear system is solved. All three cope with redundant contacts; the
   /// incremental factor is the fastest while the clamped set is independent.
   LcpLinearSolver linearSolver = LcpLinearSolver::IncrementalCholesky;
@@ -61,6 +76,9 @@ struct LcpResult {
   VecX f;               ///< N, one force magnitude per contact, >= 0 when clamped
   VecX a;               ///< m/s², A f + b for the returned f
   int pivots = 0;       ///< maxstep events taken
+  /// N, the most negative force before the clamp of \thesis{§3.3.1} (0 when none was
+  /// negative): what the clamp removed, or what is left in f when it is off.
+  double mostNegativeForce = 0.0;
   bool converged = true;  ///< false when the pivot guard or an unbounded step stopped it
   std::string failure;  ///< why it stopped early, empty when converged
 };

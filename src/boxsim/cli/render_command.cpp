@@ -1,4 +1,8 @@
 #include <iostream>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "boxsim/cli/commands.hpp"
 #include "boxsim/io/render.hpp"
@@ -13,7 +17,23 @@ struct RenderArgs {
   std::vector<int> frames;
   int width = 800;
   int height = 600;
+  std::vector<std::string> colours;
 };
+
+/// "NAME=RRGGBB" (a leading # allowed) as a body name and 0xRRGGBB.
+std::pair<std::string, int> parseBodyColour(const std::string& text) {
+  const std::size_t eq = text.rfind('=');
+  std::string hex = eq == std::string::npos ? "" : text.substr(eq + 1);
+  if (!hex.empty() && hex[0] == '#') hex.erase(0, 1);
+  const bool valid = eq != std::string::npos && eq > 0 && hex.size() == 6 &&
+                     hex.find_first_not_of("0123456789abcdefABCDEF") == std::string::npos;
+  if (!valid)
+    throw std::invalid_argument("--colour '" + text +
+                                "': expected NAME=RRGGBB, a body name and six hex digits, "
+                                "such as die=d62728");
+  return {text.substr(0, eq), std::stoi(hex, nullptr, 16)};
+}
+
 }  // namespace
 
 void addRenderCommand(CLI::App& app) {
@@ -32,6 +52,9 @@ void addRenderCommand(CLI::App& app) {
       ->check(CLI::Range(64, 8192));
   cmd->add_option("--height", args->height, "Image height, pixels")->capture_default_str()
       ->check(CLI::Range(64, 8192));
+  cmd->add_option("--colour", args->colours,
+                  "Fill colour of a body, NAME=RRGGBB (repeat for several bodies); the others "
+                  "keep the palette");
   cmd->callback([args] {
     try {
       const Trajectory trajectory = readTrajectory(args->trajectory);
@@ -39,6 +62,7 @@ void addRenderCommand(CLI::App& app) {
       options.width = args->width;
       options.height = args->height;
       options.frames = args->frames;
+      for (const std::string& c : args->colours) options.bodyColours.insert(parseBodyColour(c));
       renderTrajectory(trajectory, args->out, options);
     } catch (const std::exception& e) {
       std::cerr << "boxsim render: error: " << e.what() << "\n";

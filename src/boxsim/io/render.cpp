@@ -183,7 +183,7 @@ std::string terminalCommand(ImageType type, int width, int height, int gifDelay)
 std::string scriptFor(const Trajectory& trajectory, ImageType type, const std::string& outputPath,
                       const RenderOptions& options) {
   const FramePlan plan = planFrames(trajectory, type, options);
-  const render::SceneDrawer drawer(trajectory, options.groundHalfSize);
+  const render::SceneDrawer drawer(trajectory, options.groundHalfSize, options.bodyColours);
   // The camera is fixed by every frame, drawn or not, so that all pictures of a run agree.
   render::SceneBounds bounds;
   for (int f = 0; f < static_cast<int>(trajectory.frames.size()); ++f) {

@@ -13,6 +13,7 @@
 /// rotation by +90° about x, so handedness and face orientation survive the change of frame.
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,10 @@ struct RenderOptions {
   double groundHalfSize = 0.0;
   /// Text above the picture; empty for none.
   std::string title;
+  /// Fill colours, 0xRRGGBB before shading, of the bodies named here; the others, movable
+  /// ones cycling through the palette and immovable ones grey, as without it. A name no body
+  /// has is an error (std::invalid_argument naming it), so a typo does not pass unseen.
+  std::map<std::string, int> bodyColours;
 };
 
 /// The gnuplot script that draws `trajectory` into `outputPath`, data inline.

@@ -271,9 +271,28 @@ ViewAxes viewAxes() {
           Vec3(std::sin(a) * std::sin(b), -std::sin(a) * std::cos(b), std::cos(a))};
 }
 
-SceneDrawer::SceneDrawer(const Trajectory& trajectory, double groundHalfSize)
+SceneDrawer::SceneDrawer(const Trajectory& trajectory, double groundHalfSize,
+                         const std::map<std::string, int>& bodyColours)
     : trajectory_(trajectory), view_(viewAxes()) {
   const std::size_t bodyCount = trajectory.bodies.size();
+  // Fill colours: the palette cycled over the movable bodies, grey for immovable ones, unless
+  // bodyColours names the body.
+  colour_.assign(bodyCount, kImmovableColour);
+  std::size_t movableOrdinal = 0;
+  for (std::size_t b = 0; b < bodyCount; ++b)
+    if (!trajectory.bodies[b].immovable)
+      colour_[b] = kBodyColours[movableOrdinal++ % kBodyColours.size()];
+  for (const auto& [name, rgb] : bodyColours) {
+    std::size_t b = 0;
+    while (b < bodyCount && trajectory.bodies[b].name != name) ++b;
+    if (b == bodyCount)
+      throw std::invalid_argument("render: a colour is given for body '" + name +
+                                  "', but the trajectory has no body of that name");
+    if (rgb < 0 || rgb > 0xffffff)
+      throw std::invalid_argument("render: the colour of body '" + name +
+                                  "' must be 0xRRGGBB (0 to 0xffffff)");
+    colour_[b] = rgb;
+  }
   for (std::size_t f = 0; f < trajectory.frames.size(); ++f) {
     const TrajectoryFrame& frame = trajectory.frames[f];
     if (frame.x.size() != bodyCount || frame.q.size() != bodyCount) {
@@ -340,7 +359,6 @@ FrameDrawing SceneDrawer::draw(int frameIndex) const {
   const TrajectoryFrame& frame = trajectory_.frames[frameIndex];
   FrameDrawing drawing;
   std::vector<std::size_t> boxes;
-  int movableOrdinal = 0;
   // The largest floor in view receives the shadows and the grid.
   GroundPlane mainGround{};
   std::vector<Vec3> mainGroundPolygon;
@@ -368,11 +386,7 @@ FrameDrawing SceneDrawer::draw(int frameIndex) const {
       }
       continue;
     }
-    const int colour =
-        body.immovable
-            ? kImmovableColour
-            : kBodyColours[static_cast<std::size_t>(movableOrdinal) % kBodyColours.size()];
-    if (!body.immovable) ++movableOrdinal;
+    const int colour = colour_[b];
     boxes.push_back(b);
     for (const Face& face : faces) {
       // Orthographic camera: a face is seen exactly when its normal points at the viewer.

@@ -9,6 +9,8 @@
 #pragma once
 
 #include <limits>
+#include <map>
+#include <string>
 #include <vector>
 
 #include "boxsim/core/math.hpp"
@@ -75,7 +77,10 @@ class SceneDrawer {
   /// `trajectory` must outlive the drawer.
   /// \throws std::invalid_argument for a frame whose pose count differs from the body count, or
   ///         a non-finite or zero pose (the message names the frame and the body).
-  SceneDrawer(const Trajectory& trajectory, double groundHalfSize);
+  /// `bodyColours` gives the fill colour (0xRRGGBB, before shading) of the bodies it names;
+  /// the others take the palette. \throws std::invalid_argument for a name no body has.
+  SceneDrawer(const Trajectory& trajectory, double groundHalfSize,
+              const std::map<std::string, int>& bodyColours = {});
 
   /// Draws frame `frameIndex` (0 ≤ frameIndex < frame count, not checked): every face of every
   /// box the camera sees, Lambert shaded; the floors' top faces; and, on the largest floor in
@@ -88,6 +93,7 @@ class SceneDrawer {
   Vec2 squareCentre_ = Vec2::Zero();  // (x, z) in the world, m
   double squareHalf_ = 1.0;           // m
   std::vector<bool> huge_;            // per body: drawn as a floor
+  std::vector<int> colour_;           // per body: fill colour before shading
 };
 
 /// The bounds of everything drawn in a set of frames, in gnuplot coordinates and on the screen

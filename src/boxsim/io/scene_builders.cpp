@@ -1,5 +1,6 @@
 #include "boxsim/io/scene_builders.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -10,6 +11,18 @@ namespace {
 RigidBody cube(double size, double mass) {
   return RigidBody::box(Vec3::Constant(0.5 * size), mass);
 }
+
+/// Adds a box of 1 kg with the given half extents (m) at `centre` (m), orientation q.
+void addBox(World& world, const std::string& name, const Vec3& halfExtents, const Vec3& centre,
+            const Quat& q = Quat::Identity()) {
+  RigidBody b = RigidBody::box(halfExtents, 1.0);
+  b.s.x = centre;
+  b.s.q = q;
+  b.updateDerived();
+  world.add(b, name);
+}
+
+const Vec3 kUnitHalf = Vec3::Constant(0.5);
 
 void requirePositiveCount(int count, const char* what) {
   if (count <= 0)
@@ -41,11 +54,19 @@ int addTower(World& world, const TowerSpec& spec) {
 
 int addPyramid(World& world, const PyramidSpec& spec) {
   requirePositiveCount(spec.base, "pyramid base");
+  for (const auto& [row, k] : spec.omitted)
+    if (row < 0 || row >= spec.base || k < 0 || k >= spec.base - row)
+      throw std::invalid_argument("pyramid: omitted box (" + std::to_string(row) + ", " +
+                                  std::to_string(k) + ") is not in a pyramid of base " +
+                                  std::to_string(spec.base));
   int added = 0;
   const double pitch = spec.size + spec.gap;
   for (int row = 0; row < spec.base; ++row) {
     const int inRow = spec.base - row;
     for (int k = 0; k < inRow; ++k) {
+      if (std::find(spec.omitted.begin(), spec.omitted.end(), std::make_pair(row, k)) !=
+          spec.omitted.end())
+        continue;
       RigidBody b = cube(spec.size, spec.mass);
       b.s.x = spec.origin + Vec3((k - 0.5 * (inRow - 1)) * pitch, (row + 0.5) * spec.size, 0.0);
       world.add(b, "pyramid_r" + std::to_string(row) + "_" + std::to_string(k));
@@ -53,6 +74,25 @@ int addPyramid(World& world, const PyramidSpec& spec) {
     }
   }
   return added;
+}
+
+int addOneCornerOver(World& world) {
+  addBox(world, "lower", kUnitHalf, Vec3(0.0, 0.5, 0.0));
+  addBox(world, "upper", kUnitHalf, Vec3(0.75, 1.5, 0.75));
+  return 2;
+}
+
+int addBoxOnWiderBox(World& world, const Quat& topOrientation) {
+  addBox(world, "base", Vec3(1.5, 0.5, 1.5), Vec3(0.0, 0.5, 0.0));
+  addBox(world, "top", kUnitHalf, Vec3(0.4, 1.5, -0.3), topOrientation);
+  return 2;
+}
+
+int addBridge(World& world, bool withRightSupport) {
+  addBox(world, "left", kUnitHalf, Vec3(-0.75, 0.5, 0.0));
+  if (withRightSupport) addBox(world, "right", kUnitHalf, Vec3(0.75, 0.5, 0.0));
+  addBox(world, "bridge", Vec3(1.0, 0.5, 0.5), Vec3(0.0, 1.5, 0.0));
+  return withRightSupport ? 3 : 2;
 }
 
 Eigen::Vector3i clumpGrid(int count) {

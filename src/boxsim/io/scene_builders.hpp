@@ -5,6 +5,9 @@
 /// and returns how many it added; all bodies are cubes of one size and mass (\thesis{§3.1}).
 #pragma once
 
+#include <utility>
+#include <vector>
+
 #include "boxsim/core/world.hpp"
 
 namespace boxsim {
@@ -38,6 +41,9 @@ struct PyramidSpec {
   double mass = 1.0;   ///< kg
   Vec3 origin = Vec3::Zero();  ///< bottom centre, m
   double gap = 0.0;    ///< horizontal gap between neighbours in a row, m, >= 0
+  /// Boxes left out, by (row, index in the row), both from 0 at the bottom left: {0, 4} is the
+  /// bottom centre of a base of 9 (\thesis{Fig. 5.6}). Pairs outside the pyramid are an error.
+  std::vector<std::pair<int, int>> omitted;
 };
 
 /// `count` cubes on a regular grid of the given spacing centred on `center`, each moving at
@@ -60,6 +66,19 @@ int addTower(World& world, const TowerSpec& spec);
 int addPyramid(World& world, const PyramidSpec& spec);
 /// Adds the clump; returns spec.count.
 int addClump(World& world, const ClumpSpec& spec);
+
+/// \thesis{Fig. 5.3}: a cube "lower" on the ground and a cube "upper" on it, shifted by ¾ of
+/// its size along x and z, so only one of its bottom corners lies over the lower cube: not
+/// geometrically stable. Unit cubes of 1 kg resting on the plane y = 0. Returns 2.
+int addOneCornerOver(World& world);
+/// \thesis{Fig. 5.4}: a 3 × 1 × 3 m box "base" on the plane y = 0 and a unit cube "top" wholly
+/// on it, centred over (0.4, −0.3), turned by topOrientation about its centre (keep its bottom
+/// face down). Both stable. 1 kg each. Returns 2.
+int addBoxOnWiderBox(World& world, const Quat& topOrientation = Quat::Identity());
+/// \thesis{Fig. 5.5}: unit cubes "left" and (withRightSupport) "right" on the plane y = 0,
+/// 0.5 m apart, and a 2 × 1 × 1 m box "bridge" lying across them, two of its bottom corners on
+/// each. Stable with both supports, not with the left alone. 1 kg each. Returns the count.
+int addBridge(World& world, bool withRightSupport = true);
 
 /// The grid dimensions the clump builder uses for `count` cubes (nx >= ny >= nz, product
 /// == count, as close to a cube as possible).
