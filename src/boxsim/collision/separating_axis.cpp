@@ -228,9 +228,11 @@ SeparatingAxisResult separatingAxisTest(const Obb& a, const Obb& b,
   const bool intersecting = leastDepth > 0.0;
   // Overlapping: an edge axis must beat the face by the relative bias, so flush faces, whose
   // edge axes coincide with the face normal, give face contacts. Separated: the largest gap
-  // wins outright, because -depth must be the largest gap.
-  const bool useEdge =
-      haveEdge && (intersecting ? edge.depth < edgeBar : edge.depth < face.depth);
+  // wins. Either way it must also win by more than the face tie width: flush faces whose
+  // depth is rounding (±1e-11 m in a resting stack) would otherwise give an edge axis that
+  // rounding favours, and a one-point edge contact where a face rests on a face.
+  const bool useEdge = haveEdge && (intersecting ? edge.depth < edgeBar - tieWidth
+                                                : edge.depth < face.depth - tieWidth);
 
   SeparatingAxisResult result;
   result.intersecting = intersecting;

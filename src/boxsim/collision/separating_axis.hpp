@@ -35,10 +35,12 @@ struct SeparatingAxisParams {
 /// "Intersection of Convex Objects: The Method of Separating Axes").
 ///
 /// Overlapping boxes (every axis has depth > 0): the axis of least depth, except that a face
-/// axis is kept unless an edge axis is smaller by more than params.edgeBias (relative), and
-/// face axes within faceTieTolerance of each other go to the larger face, then the lower box.
-/// Separated or touching boxes: depth = -(largest gap over the tested axes) <= 0 (up to that
-/// same face tie tolerance) and intersecting = false; the normal is that gap's axis.
+/// axis is kept unless an edge axis is smaller by more than params.edgeBias (relative) plus
+/// the face tie width (faceTieTolerance times the boxes' size), and face axes within that
+/// width of each other go to the larger face, then the lower box.
+/// Separated or touching boxes: depth = -(largest gap over the tested axes) <= 0, up to that
+/// same width (an edge gap must exceed the face gap by more than it) and intersecting =
+/// false; the normal is that gap's axis.
 /// intersecting is exactly depth > 0.
 ///
 /// The answer is symmetric: swapping A and B gives the same depth (bit for bit), the negated

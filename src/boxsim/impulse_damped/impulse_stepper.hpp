@@ -23,8 +23,8 @@ struct ImpulseStepperParams {
   /// Iterations, normal model, contact margin, gathering. The plain step is the baseline the
   /// thesis measures its damping against, so it gathers contacts every pass as written
   /// (ContactGatheringMode::EveryPass); once per step is selectable. Measured on the base-10
-  /// pyramid, the plain step's apex sags 5 mm in 5 s gathering every pass and 7 cm gathering
-  /// once per step: without damping, the sequence of impulses that holds the pyramid up is
+  /// pyramid, the plain step's apex sags 2.2 mm in 5 s gathering every pass and 3 cm
+  /// gathering once per step: without damping, the sequence of impulses that holds the pyramid up is
   /// sensitive to every detail of the contacts (chapters/impulse_damped/README.md).
   ImpulseParams impulse = asWritten();
   bool shockPropagation = true; ///< Guendelman et al.'s last sweep up the contact graph
