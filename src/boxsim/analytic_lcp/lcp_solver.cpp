@@ -3,6 +3,7 @@
 #include "boxsim/analytic_lcp/lcp_solver.hpp"
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCore>
 
 #include <algorithm>
 #include <cmath>
@@ -18,53 +19,41 @@ namespace {
 /// not clamped (f = 0, a >= 0).
 enum class ContactSet : unsigned char { Undriven, Clamped, NotClamped };
 
-/// The Cholesky factor L Lᵀ = A_CC of the clamped set, grown a row at a time as contacts are
-/// clamped (O(m²) per contact instead of O(m³) per pivot; \thesis{§5.3} points to such
-/// updates, after Davis and Hager's modifiable factorisations). A contact leaving the set
-/// makes it refactor from the remaining ones in order. A contact whose row depends on the
-/// clamped ones (redundant contacts: a singular A_CC) cannot be appended: the factor is then
-/// given up for the rest of the solve and fdirection falls back to a pivoted LDLᵀ.
+/// The Cholesky factor L Lᵀ of A_BB, B the independent contacts of the clamped set, grown a
+/// row at a time as contacts are clamped (O(m²) per contact instead of O(m³) per pivot;
+/// \thesis{§5.3} points to such updates, after Davis and Hager's modifiable factorisations).
+///
+/// Redundant contacts (a singular A_CC, such as four coplanar corners on a plane) are kept out
+/// of B: a clamped contact r whose row of J depends on those of B has a_r = Σ α_k a_k = 0
+/// whatever the forces of B do, so it keeps its force (Δf_r = 0) and the direction solves for
+/// B alone. A contact of B leaving the clamped set is removed from the factor by a rank-one
+/// update of the rows below it (O(m²), Golub and Van Loan §6.5.4, as Davis and Hager's
+/// row deletion), and the clamped contacts kept out are offered to B again, in the order they
+/// were clamped: without the one that left, their rows may have become independent.
 class ClampedFactor {
  public:
-  explicit ClampedFactor(const MatX& A) : A_(A), L_(A.rows(), A.rows()) {}
+  explicit ClampedFactor(const MatX& A)
+      : A_(A), L_(A.rows(), A.rows()), inB_(static_cast<std::size_t>(A.rows()), 0) {}
 
-  bool usable() const { return usable_; }
+  /// B, in factor order.
   const std::vector<int>& order() const { return order_; }
 
-  /// Appends contact i; false (and the factor given up) when A_CC would be singular.
-  bool append(int i) {
-    if (!usable_) return false;
-    const int m = static_cast<int>(order_.size());
-    VecX l(m);
-    for (int r = 0; r < m; ++r) {
-      double sum = A_(order_[r], i);
-      for (int c = 0; c < r; ++c) sum -= L_(r, c) * l[c];
-      l[r] = sum / L_(r, r);
-    }
-    const double pivot = A_(i, i) - l.squaredNorm();
-    // Relative to the diagonal: below this the new row is a combination of the others up to
-    // rounding (four coplanar corners leave exactly 0 up to a few ulp).
-    if (!(pivot > kDependentPivot * A_(i, i))) {
-      usable_ = false;
-      return false;
-    }
-    for (int c = 0; c < m; ++c) L_(m, c) = l[c];
-    L_(m, m) = std::sqrt(pivot);
-    order_.push_back(i);
-    return true;
+  /// Contact i joins the clamped set: appended to B unless its row depends on B's.
+  void clamp(int i) {
+    clamped_.push_back(i);
+    append(i);
   }
 
-  /// Removes contact i and refactors the rest in their order.
-  void remove(int i) {
-    std::vector<int> rest;
-    for (int k : order_)
-      if (k != i) rest.push_back(k);
-    order_.clear();
-    for (int k : rest)
-      if (!append(k)) return;
+  /// Contact i leaves the clamped set.
+  void unclamp(int i) {
+    clamped_.erase(std::find(clamped_.begin(), clamped_.end(), i));
+    if (!inB_[i]) return;
+    removeAt(static_cast<int>(std::find(order_.begin(), order_.end(), i) - order_.begin()));
+    for (int k : clamped_)
+      if (!inB_[k]) append(k);
   }
 
-  /// x with A_CC x = rhs, rhs and x in order() order.
+  /// x with A_BB x = rhs, rhs and x in order() order.
   VecX solve(const VecX& rhs) const {
     const int m = static_cast<int>(order_.size());
     VecX y(m);
@@ -83,11 +72,58 @@ class ClampedFactor {
   }
 
  private:
-  static constexpr double kDependentPivot = 1e-10;
+  /// Appends contact i to B when its row is independent of B's.
+  void append(int i) {
+    const int m = static_cast<int>(order_.size());
+    VecX l(m);
+    for (int r = 0; r < m; ++r) {
+      double sum = A_(order_[r], i);
+      for (int c = 0; c < r; ++c) sum -= L_(r, c) * l[c];
+      l[r] = sum / L_(r, r);
+    }
+    const double pivot = A_(i, i) - l.squaredNorm();
+    // Relative to the diagonal: below this the new row is a combination of B's up to
+    // rounding (four coplanar corners leave 0 up to a few ulp) or so nearly one that the
+    // factor would amplify rounding by 1/√pivot.
+    if (!(pivot > kDependentPivot * A_(i, i))) return;
+    for (int c = 0; c < m; ++c) L_(m, c) = l[c];
+    L_(m, m) = std::sqrt(pivot);
+    order_.push_back(i);
+    inB_[i] = 1;
+  }
+
+  /// Deletes row and column p of A_BB from the factor. Rows below p move up a row and their
+  /// columns after p left a column; the trailing block L₃₃ then needs L₃₃' L₃₃'ᵀ =
+  /// L₃₃ L₃₃ᵀ + x xᵀ, x the deleted column below p, one Givens-like sweep over it.
+  void removeAt(int p) {
+    const int m = static_cast<int>(order_.size());
+    const int k = m - p - 1;
+    VecX x = L_.col(p).segment(p + 1, k);
+    for (int c = 0; c < p; ++c)
+      for (int i = p + 1; i < m; ++i) L_(i - 1, c) = L_(i, c);
+    for (int c = p + 1; c < m; ++c)
+      for (int i = c; i < m; ++i) L_(i - 1, c - 1) = L_(i, c);
+    for (int j = 0; j < k; ++j) {
+      const int col = p + j;
+      const double diagonal = L_(col, col);
+      const double r = std::hypot(diagonal, x[j]);
+      const double cosine = r / diagonal, sine = x[j] / diagonal;
+      L_(col, col) = r;
+      for (int i = j + 1; i < k; ++i) {
+        L_(p + i, col) = (L_(p + i, col) + sine * x[i]) / cosine;
+        x[i] = cosine * x[i] - sine * L_(p + i, col);
+      }
+    }
+    inB_[order_[p]] = 0;
+    order_.erase(order_.begin() + p);
+  }
+
+  static constexpr double kDependentPivot = 1e-8;
   const MatX& A_;
   MatX L_;
+  std::vector<int> clamped_;  // in the order they were clamped
   std::vector<int> order_;
-  bool usable_ = true;
+  std::vector<char> inB_;     // per contact: in B
 };
 
 /// fdirection(d) of Baraff 1994, §5: the change of the forces that moves a_d while every
@@ -98,7 +134,7 @@ VecX forceDirection(const MatX& A, const std::vector<ContactSet>& set, int d,
   const int n = static_cast<int>(A.rows());
   VecX df = VecX::Zero(n);
   df[d] = 1.0;
-  if (factor && factor->usable()) {
+  if (factor) {
     const std::vector<int>& order = factor->order();
     VecX rhs(order.size());
     for (std::size_t r = 0; r < order.size(); ++r) rhs[static_cast<int>(r)] = -A(order[r], d);
@@ -135,22 +171,36 @@ VecX forceDirection(const MatX& A, const std::vector<ContactSet>& set, int d,
 /// maxstep(f, a, Δf, Δa, d) of Baraff 1994, §5: the largest s >= 0 for which f + s Δf and
 /// a + s Δa keep the conditions of every set, and the contact j whose condition stops it
 /// (j = d: a_d reaches 0). j = -1 when nothing bounds the step.
+///
+/// Rates of change smaller than this share of the largest are rounding (see maxStep).
+constexpr double kRoundingRate = 1e-12;
+
+/// DEVIATION(Baraff 1994 §5, exact comparisons): a contact already at its bound (a clamped
+/// one at f = 0, a not clamped one at a = 0) counts as falling only when its rate is below
+/// −kRoundingRate of the largest rate of its kind. A redundant contact's true rates are 0 and
+/// rounding gives them ±1e-16: compared with 0, such a contact leaves the clamped set on a
+/// step of 0 and rejoins it on the next, for ever (measured on a touching pyramid of base 10).
+/// Let through, its force or acceleration strays past the bound by rounding only, which the
+/// clamp of \thesis{§3.3.1} removes. Contacts away from their bounds are compared exactly.
 std::pair<double, int> maxStep(const VecX& f, const VecX& a, const VecX& df, const VecX& da,
                                const std::vector<ContactSet>& set, int d) {
   double s = std::numeric_limits<double>::infinity();
   int j = -1;
+  const double dfFalling = -kRoundingRate * df.cwiseAbs().maxCoeff();
+  const double daFalling = -kRoundingRate * da.cwiseAbs().maxCoeff();
   if (da[d] > 0.0) {
     s = -a[d] / da[d];
     j = d;
   }
   for (int i = 0; i < static_cast<int>(f.size()); ++i) {
-    if (set[i] == ContactSet::Clamped && df[i] < 0.0) {
+    if (set[i] == ContactSet::Clamped && df[i] < 0.0 && !(f[i] <= 0.0 && df[i] >= dfFalling)) {
       const double si = -f[i] / df[i];
       if (si < s) {
         s = si;
         j = i;
       }
-    } else if (set[i] == ContactSet::NotClamped && da[i] < 0.0) {
+    } else if (set[i] == ContactSet::NotClamped && da[i] < 0.0 &&
+               !(a[i] <= 0.0 && da[i] >= daFalling)) {
       const double si = -a[i] / da[i];
       if (si < s) {
         s = si;
@@ -192,6 +242,9 @@ LcpResult solveContactLcp(const MatX& A, const VecX& b, const LcpParams& params)
   const long maxPivots = static_cast<long>(params.maxPivotsPerContact) * std::max(n, 1);
   VecX& f = result.f;
   VecX& a = result.a;
+  // Δa = A Δf at every pivot: A couples only contacts that share a body, a few dozen per row
+  // of hundreds, so a sparse copy makes the product O(nonzeros) rather than O(n²).
+  const Eigen::SparseMatrix<double> sparseA = A.sparseView();
   ClampedFactor factor(A);
   const ClampedFactor* incremental =
       params.linearSolver == LcpLinearSolver::IncrementalCholesky ? &factor : nullptr;
@@ -210,7 +263,7 @@ LcpResult solveContactLcp(const MatX& A, const VecX& b, const LcpParams& params)
         break;
       }
       const VecX df = forceDirection(A, set, d, params.linearSolver, incremental);
-      const VecX da = A * df;
+      const VecX da = sparseA * df;
       const auto [s, j] = maxStep(f, a, df, da, set, d);
       ++result.pivots;
       if (j < 0) {
@@ -223,17 +276,17 @@ LcpResult solveContactLcp(const MatX& A, const VecX& b, const LcpParams& params)
       if (j == d) {
         set[d] = ContactSet::Clamped;
         if (params.snapToBounds) a[d] = 0.0;
-        if (incremental) factor.append(d);
+        if (incremental) factor.clamp(d);
         break;
       }
       if (set[j] == ContactSet::Clamped) {
         set[j] = ContactSet::NotClamped;
         if (params.snapToBounds) f[j] = 0.0;
-        if (incremental) factor.remove(j);
+        if (incremental) factor.unclamp(j);
       } else {
         set[j] = ContactSet::Clamped;
         if (params.snapToBounds) a[j] = 0.0;
-        if (incremental) factor.append(j);
+        if (incremental) factor.clamp(j);
       }
     }
     if (!result.converged) break;
