@@ -147,3 +147,24 @@ TEST_CASE("Technique options reach the stepper and its header; options a method 
   CHECK_THAT(impulse.stderrText, Contains("takes no integrator option"));
   CHECK_FALSE(fs::exists(refused));
 }
+
+TEST_CASE("boxsim render --colour colours a named body; a bad name or colour exits non-zero",
+          "[cli][input][render]") {
+  const ScratchDir kDir;
+  const std::string traj = (kDir / "die.dat").string();
+  REQUIRE(runBoxsim(kDir, "run " + std::string(BOXSIM_SOURCE_DIR) +
+                              "/chapters/basic_colliding/scenes/die.json --duration 0.1 --out " +
+                              traj)
+              .status == 0);
+  const std::string png = (kDir / "die.png").string();
+  CHECK(runBoxsim(kDir, "render " + traj + " --out " + png + " --colour die=#666666").status == 0);
+  CHECK(fs::file_size(png) > 0);
+  const std::string bad = (kDir / "bad.png").string();
+  const Result name = runBoxsim(kDir, "render " + traj + " --out " + bad + " --colour dye=666666");
+  CHECK(name.status != 0);
+  CHECK_THAT(name.stderrText, Contains("'dye'"));
+  const Result colour = runBoxsim(kDir, "render " + traj + " --out " + bad + " --colour die=66666g");
+  CHECK(colour.status != 0);
+  CHECK_THAT(colour.stderrText, Contains("NAME=RRGGBB"));
+  CHECK_FALSE(fs::exists(bad));
+}

@@ -108,6 +108,14 @@ TEST_CASE("The builders make the thesis' scenes", "[io][scene]") {
   World w;
   CHECK(addPyramid(w, PyramidSpec{10}) == 55);
   CHECK(w.bodies.back().s.x.y() == Approx(9.5));  // apex: tenth row
+  // Fig. 5.6: the bottom centre of a base of 9 left out, by (row, index in the row).
+  World holed;
+  PyramidSpec spec{9};
+  spec.omitted = {{0, 4}};
+  CHECK(addPyramid(holed, spec) == 44);
+  for (const std::string& name : holed.names) CHECK(name != "pyramid_r0_4");
+  spec.omitted = {{1, 8}};  // row 1 has 8 boxes, 0 to 7
+  CHECK_THROWS_WITH(addPyramid(holed, spec), Catch::Contains("(1, 8)"));
   CHECK(clumpGrid(100) == Eigen::Vector3i(5, 5, 4));
   CHECK(clumpGrid(1000) == Eigen::Vector3i(10, 10, 10));
   World c;
