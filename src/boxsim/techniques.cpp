@@ -6,10 +6,14 @@
 #include "boxsim/basic_colliding/basic_colliding.hpp"
 #include "boxsim/impulse_damped/damped_integration.hpp"
 #include "boxsim/impulse_damped/impulse_stepper.hpp"
+#include "boxsim/timewarp/timewarp.hpp"
 
 namespace boxsim {
 
-std::vector<std::string> methodNames() { return {"basic_colliding", "analytic", "impulse", "damped"}; }
+std::vector<std::string> methodNames() {
+  return {"basic_colliding", "analytic", "impulse", "damped", "timewarp_simple", "timewarp_safer",
+          "timewarp_swept"};
+}
 
 std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueOptions& options) {
   const auto refuse = [&](bool given, const char* option) {
@@ -33,6 +37,18 @@ std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueO
     AnalyticParams params;
     if (options.integrator) params.loop.integrator = *options.integrator;
     return std::make_unique<AnalyticStepper>(params);
+  }
+  for (const TimewarpVariant variant :
+       {TimewarpVariant::Simple, TimewarpVariant::Safer, TimewarpVariant::Swept}) {
+    if (method != timewarpMethodName(variant)) continue;
+    refuse(options.contactNormal.has_value(), "contact normal");
+    refuse(options.contactGathering.has_value(), "contact gathering");
+    refuse(options.sleep.has_value(), "sleep");
+    refuse(options.plausibilitySeed.has_value(), "plausibility seed");
+    TimewarpParams params;
+    params.variant = variant;
+    if (options.integrator) params.integrator = *options.integrator;
+    return std::make_unique<TimewarpStepper>(params);
   }
   refuse(options.integrator.has_value(), "integrator");
   if (method == "impulse") {

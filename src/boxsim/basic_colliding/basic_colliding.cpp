@@ -99,11 +99,19 @@ StepStats advanceColliding(World& world, double dt, const BasicCollidingParams& 
   std::vector<char> held;
   int eventsSinceHold = 0;
   double remaining = dt;
+  // Bodies integrateWorld advances: movable and not held.
+  const auto moving = [&] {
+    long count = 0;
+    for (std::size_t k = 0; k < world.bodies.size(); ++k)
+      count += !world.bodies[k].immovable && (held.empty() || !held[k]);
+    return count;
+  };
   while (remaining > 0.0) {
     const WorldState start = world.saveState();
     const std::vector<Wrench> extra = hooks.extraForces ? hooks.extraForces(world) : std::vector<Wrench>{};
     // §2.1 step 1: integrate velocity and force forward in time.
     integrateWorld(world, remaining, params.integrator, held, extra);
+    stats.bodyIntegrations += moving();
     // §2.1 step 2: if two objects intersect, the simulation is stopped.
     const std::pair<int, int> first = firstIntersectingPair(
         world, params.timeOfImpact.depthTolerance, BroadPhase::SweepAndPrune, hooks.notColliding);
@@ -114,6 +122,10 @@ StepStats advanceColliding(World& world, double dt, const BasicCollidingParams& 
                                               params.timeOfImpact, held, extra, hooks.notColliding);
     stats.bisections += toi.bisections;
     stats.restarts += toi.restarts;
+    // Each bisection rolls every moving body back to `start` and integrates it again; so does
+    // the integration to the contact time below.
+    stats.bodyRollbacks += moving() * (toi.bisections + 1);
+    stats.bodyIntegrations += moving() * (toi.bisections + 1);
     // The contact geometry comes from the first intersecting state, the velocities from the
     // rolled-back one: the two differ by less than the time tolerance.
     World atImpact = world;

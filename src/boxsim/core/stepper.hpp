@@ -22,6 +22,12 @@ struct StepStats {
   /// True when the step hit a documented work limit (e.g. the basic colliding technique's
   /// events-per-step bound) and did less than the technique asks for.
   bool limitReached = false;
+  /// Single-body integrations (one body advanced over one interval, roll-back searches
+  /// included): the work \thesis{§2.4.3}'s timewarp saves by rewinding only bodies near an
+  /// event. Counted by the chronological techniques (basic colliding, analytic, timewarp).
+  long bodyIntegrations = 0;
+  /// Single-body roll-backs: a body's state reset to an earlier one to be integrated again.
+  long bodyRollbacks = 0;
 
   /// Accumulates the counts of another step; `contacts` and `sleeping` take the later value.
   StepStats& operator+=(const StepStats& o) {
@@ -31,6 +37,8 @@ struct StepStats {
     contacts = o.contacts;
     sleeping = o.sleeping;
     limitReached = limitReached || o.limitReached;
+    bodyIntegrations += o.bodyIntegrations;
+    bodyRollbacks += o.bodyRollbacks;
     return *this;
   }
 };

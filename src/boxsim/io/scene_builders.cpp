@@ -95,6 +95,20 @@ int addBridge(World& world, bool withRightSupport) {
   return withRightSupport ? 3 : 2;
 }
 
+int addFig5_1Row(World& world, const Vec3& origin) {
+  const char* names[] = {"A", "B", "C", "D", "E"};
+  const double x[] = {0.0, 1.2, 2.4, 3.6, 4.64};
+  const double speed[] = {144.0, 0.0, 0.0, 6.0, 0.0};
+  for (int i = 0; i < 5; ++i) {
+    RigidBody b = cube(1.0, 1.0);
+    b.s.x = origin + Vec3(x[i], 0.0, 0.0);
+    b.updateDerived();
+    b.setVelocity(Vec3(speed[i], 0.0, 0.0));
+    world.add(b, names[i]);
+  }
+  return 5;
+}
+
 Eigen::Vector3i clumpGrid(int count) {
   requirePositiveCount(count, "clump count");
   Eigen::Vector3i best(count, 1, 1);

@@ -80,6 +80,13 @@ int addBoxOnWiderBox(World& world, const Quat& topOrientation = Quat::Identity()
 /// each. Stable with both supports, not with the left alone. 1 kg each. Returns the count.
 int addBridge(World& world, bool withRightSupport = true);
 
+/// \thesis{Fig. 5.1}: five unit cubes of 1 kg named "A" to "E" in a row along x at
+/// x = 0, 1.2, 2.4, 3.6, 4.64 m (y = origin.y; gaps 0.2, 0.2, 0.2, 0.04 m), shifted by origin.
+/// A moves right at 144 m/s: in a 1/60 s frame it ends past B, overlapping C. D moves right at
+/// 6 m/s and ends overlapping E. Meant for gravity 0 and restitution 1, so the true sequence
+/// is A→B→C→D→E, a Newton's cradle. Returns 5.
+int addFig5_1Row(World& world, const Vec3& origin = Vec3::Zero());
+
 /// The grid dimensions the clump builder uses for `count` cubes (nx >= ny >= nz, product
 /// == count, as close to a cube as possible).
 Eigen::Vector3i clumpGrid(int count);

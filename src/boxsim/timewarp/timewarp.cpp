@@ -1,0 +1,315 @@
+/// \file
+/// The modified timewarp, \alg{A.1}; each step below is tagged with its pseudocode line.
+#include "boxsim/timewarp/timewarp.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <set>
+#include <stdexcept>
+#include <tuple>
+
+#include "boxsim/collision/broad_phase.hpp"
+#include "boxsim/collision/contact_manifold.hpp"
+#include "boxsim/collision/separating_axis.hpp"
+#include "boxsim/core/newtonian_impulse.hpp"
+#include "boxsim/impulse_damped/fix_contact_constraints.hpp"
+
+namespace boxsim {
+
+std::string timewarpMethodName(TimewarpVariant variant) {
+  switch (variant) {
+    case TimewarpVariant::Simple: return "timewarp_simple";
+    case TimewarpVariant::Safer: return "timewarp_safer";
+    case TimewarpVariant::Swept: return "timewarp_swept";
+  }
+  return "timewarp";
+}
+
+namespace {
+
+/// A pending collision of the heap: its time (s after the frame's start) and its pair, a < b.
+/// Ordered by time, then pair, so equal times resolve in a fixed order (determinism).
+struct PendingCollision {
+  double time = 0.0;
+  int a = -1;
+  int b = -1;
+  bool operator<(const PendingCollision& o) const {
+    return std::tie(time, a, b) < std::tie(o.time, o.a, o.b);
+  }
+};
+
+/// Axis-aligned bounds of a box, m.
+struct Bounds {
+  Vec3 low, high;
+  bool overlaps(const Bounds& o) const {
+    return (low.array() <= o.high.array()).all() && (o.low.array() <= high.array()).all();
+  }
+  Bounds merged(const Bounds& o) const { return {low.cwiseMin(o.low), high.cwiseMax(o.high)}; }
+  Bounds widened(double m) const { return {low.array() - m, high.array() + m}; }
+};
+
+Bounds boundsOf(const RigidBody& body) {
+  const Vec3 reach = body.R.cwiseAbs() * body.halfExtents;
+  return {body.s.x - reach, body.s.x + reach};
+}
+
+/// The two states of \alg{A.1} per body, the valid times, the collision heap and the counters
+/// of one frame.
+class Frame {
+ public:
+  Frame(World& world, double dt, const TimewarpParams& params)
+      : world_(world), params_(params), end_(dt), valid_(world.bodies), test_(world.bodies),
+        validTime_(world.bodies.size(), 0.0) {}
+
+  StepStats run(std::vector<TimewarpEvent>& events);
+
+ private:
+  /// Body k's state at time t >= validTime_[k], integrated from its valid state (counted).
+  RigidBody stateAt(int k, double t) {
+    RigidBody body = valid_[k];
+    if (!body.immovable && t > validTime_[k]) {
+      integrateBody(body, t - validTime_[k], world_.gravity, params_.integrator);
+      ++stats_.bodyIntegrations;
+    }
+    return body;
+  }
+
+  double depth(const RigidBody& a, const RigidBody& b) const {
+    return separatingAxisTest(Obb::of(a), Obb::of(b)).depth;
+  }
+
+  bool approaching(const RigidBody& a, const RigidBody& b) const {
+    const ContactManifold m = collideBoxes(Obb::of(a), Obb::of(b), params_.contactMargin);
+    if (m.count == 0) return false;
+    return relativeNormalVelocity(a, b, m.centroid(), m.normal) < 0.0;
+  }
+
+  bool bothImmovable(int a, int b) const {
+    return world_.bodies[a].immovable && world_.bodies[b].immovable;
+  }
+
+  /// The collision time of pair (a, b), which intersects at `hi`, by bisection over
+  /// [max(validTime_a, validTime_b), hi] within `resolution`; nothing when the pair already
+  /// intersects at the start of the bracket without approaching (a resting contact, which
+  /// FIXINTERPENETRATION handles, not an event).
+  std::optional<PendingCollision> bisect(int a, int b, double hi) {
+    double lo = std::max(validTime_[a], validTime_[b]);
+    if (depth(stateAt(a, lo), stateAt(b, lo)) > params_.depthTolerance) {
+      if (!approaching(stateAt(a, lo), stateAt(b, lo))) return std::nullopt;
+      return PendingCollision{lo, a, b};
+    }
+    while (hi - lo > params_.resolution) {
+      const double mid = 0.5 * (lo + hi);
+      if (mid <= lo || mid >= hi) break;
+      ++stats_.bisections;
+      if (depth(stateAt(a, mid), stateAt(b, mid)) > params_.depthTolerance)
+        hi = mid;
+      else
+        lo = mid;
+    }
+    return PendingCollision{hi, a, b};
+  }
+
+  /// The swept variant's test of pair (a, b) over [max(validTimes), end]: conservative
+  /// advancement. The separating-axis gap (−depth) never exceeds the boxes' distance, and no
+  /// point of a body moves faster than |v| + |g| Δ + |ω|max |h| over the rest of the frame, so
+  /// advancing by gap / (sum of both bounds) never passes a contact.
+  std::optional<PendingCollision> sweep(int a, int b) {
+    double t = std::max(validTime_[a], validTime_[b]);
+    const auto speedBound = [&](int k) {
+      const RigidBody& body = valid_[k];
+      if (body.immovable) return 0.0;
+      // |ω| = |I⁻¹ L| <= |L| / I_min, and |L| is constant in free flight.
+      const double omegaMax = body.s.L.norm() * body.IbodyInvDiag.maxCoeff();
+      return body.v.norm() + world_.gravity.norm() * (end_ - validTime_[k]) +
+             omegaMax * body.halfExtents.norm();
+    };
+    const double speed = speedBound(a) + speedBound(b);
+    for (int iteration = 0; iteration < 1000 && t <= end_; ++iteration) {
+      const RigidBody sa = stateAt(a, t), sb = stateAt(b, t);
+      const double d = depth(sa, sb);
+      if (d > -params_.sweptGap) {
+        if (!approaching(sa, sb)) return std::nullopt;
+        return PendingCollision{t, a, b};
+      }
+      if (speed <= 0.0) return std::nullopt;
+      t += -d / speed;
+    }
+    return std::nullopt;
+  }
+
+  /// The collision of pair (a, b) after the bodies' valid times, if any: the swept test, or
+  /// (simple and safer) bisection when the test states intersect.
+  std::optional<PendingCollision> collisionOf(int a, int b) {
+    if (a > b) std::swap(a, b);
+    if (bothImmovable(a, b)) return std::nullopt;
+    if (params_.variant == TimewarpVariant::Swept) {
+      if (!sweptBounds(a).overlaps(sweptBounds(b))) return std::nullopt;
+      return sweep(a, b);
+    }
+    if (!boundsOf(test_[a]).overlaps(boundsOf(test_[b]))) return std::nullopt;
+    if (depth(test_[a], test_[b]) <= params_.depthTolerance) return std::nullopt;
+    return bisect(a, b, end_);
+  }
+
+  /// Bounds of body k over the rest of the frame: its valid and test poses, widened by how far
+  /// a corner may stray from the straight path (rotation, gravity's bend).
+  Bounds sweptBounds(int k) const {
+    const Bounds both = boundsOf(valid_[k]).merged(boundsOf(test_[k]));
+    if (valid_[k].immovable) return both;
+    const double span = end_ - validTime_[k];
+    return both.widened(0.5 * world_.gravity.norm() * span * span + valid_[k].halfExtents.norm());
+  }
+
+  /// findAllCollisions (\alg{A.1} L5).
+  void findAllCollisions() {
+    const int n = static_cast<int>(world_.bodies.size());
+    for (int a = 0; a < n; ++a)
+      for (int b = a + 1; b < n; ++b)
+        if (const auto c = collisionOf(a, b)) heap_.insert(*c);
+  }
+
+  /// addCollisionsForObject (\alg{A.1} L18 / L29).
+  void addCollisionsForObject(int k) {
+    for (int j = 0; j < static_cast<int>(world_.bodies.size()); ++j)
+      if (j != k)
+        if (const auto c = collisionOf(k, j)) heap_.insert(*c);
+  }
+
+  /// removeCollisionsForObject (\alg{A.1} L10 / L20).
+  void removeCollisionsForObject(int k) {
+    for (auto it = heap_.begin(); it != heap_.end();)
+      it = (it->a == k || it->b == k) ? heap_.erase(it) : std::next(it);
+  }
+
+  /// collideTwoObjects (\alg{A.1} L13 / L24): the Newtonian impulse at the centroid of the
+  /// pair's contact at time t, both bodies given at t; true when it changed their velocities.
+  bool collideTwoObjects(RigidBody& a, RigidBody& b) {
+    const ContactManifold m = collideBoxes(Obb::of(a), Obb::of(b), params_.contactMargin);
+    if (m.count == 0) return false;
+    return applyNewtonianImpulse(a, b, m.centroid(), m.normal, world_.restitution) > 0.0;
+  }
+
+  /// \alg{A.1} L8-L18 (simple) and L25-L29 (safer): resolve collision c, both bodies
+  /// rewound to c.time, and look for their next collisions.
+  void resolve(const PendingCollision& c, std::vector<TimewarpEvent>& events) {
+    for (const int index : {c.a, c.b}) {
+      removeCollisionsForObject(index);                  // L10 / L20
+      valid_[index] = stateAt(index, c.time);            // L11 / L22-L23
+      validTime_[index] = std::max(validTime_[index], c.time);  // L12
+    }
+    collideTwoObjects(valid_[c.a], valid_[c.b]);         // L13 / L24
+    events.push_back(TimewarpEvent{c.time, c.a, c.b});
+    ++stats_.events;
+    for (const int index : {c.a, c.b}) {
+      test_[index] = stateAt(index, end_);               // L16-L17 / L27-L28
+      ++stats_.bodyRollbacks;
+    }
+    for (const int index : {c.a, c.b}) addCollisionsForObject(index);  // L18 / L29
+  }
+
+  /// findNearObjects (\alg{A.1} SAFER L8): the pair and every body whose test-state bounds,
+  /// widened by nearMargin, overlap the pair's.
+  std::vector<int> findNearObjects(const PendingCollision& c) const {
+    const Bounds pair = boundsOf(test_[c.a]).merged(boundsOf(test_[c.b])).widened(params_.nearMargin);
+    std::vector<int> near{c.a, c.b};
+    for (int k = 0; k < static_cast<int>(world_.bodies.size()); ++k)
+      if (k != c.a && k != c.b && boundsOf(test_[k]).overlaps(pair)) near.push_back(k);
+    return near;
+  }
+
+  World& world_;
+  const TimewarpParams& params_;
+  const double end_;
+  std::vector<RigidBody> valid_, test_;
+  std::vector<double> validTime_;
+  std::set<PendingCollision> heap_;
+  StepStats stats_;
+};
+
+StepStats Frame::run(std::vector<TimewarpEvent>& events) {
+  const int n = static_cast<int>(world_.bodies.size());
+  // L1-L4: every test state is its valid state integrated over the whole frame.
+  for (int i = 0; i < n; ++i) test_[i] = stateAt(i, end_);
+  findAllCollisions();  // L5
+  while (!heap_.empty()) {  // L6
+    if (stats_.events >= params_.maxEventsPerStep) {
+      stats_.limitReached = true;
+      break;
+    }
+    const PendingCollision cur = *heap_.begin();  // L7
+    heap_.erase(heap_.begin());
+    if (params_.variant == TimewarpVariant::Safer) {
+      // L8-L13: the bodies near the collision, at its time, checked for an earlier collision
+      // among themselves.
+      // DEVIATION(\alg{A.1} SAFER L11-L12, L21-L23): the pseudocode overwrites the near bodies'
+      // test states with their states at the collision time and never integrates them to the
+      // end of the frame again, which L30-L31 would then make valid; and L22-L23 reuse `index`
+      // from the loop before. The states at the collision time are temporaries here, and the
+      // near bodies keep their test states.
+      const std::vector<int> near = findNearObjects(cur);
+      std::vector<RigidBody> probe;
+      for (const int k : near) probe.push_back(stateAt(k, cur.time));
+      std::optional<PendingCollision> earliest;
+      for (std::size_t p = 0; p < near.size(); ++p)
+        for (std::size_t q = p + 1; q < near.size(); ++q) {
+          const int a = std::min(near[p], near[q]), b = std::max(near[p], near[q]);
+          if ((a == cur.a && b == cur.b) || bothImmovable(a, b)) continue;
+          if (depth(probe[p], probe[q]) <= params_.depthTolerance) continue;
+          const auto c = bisect(a, b, cur.time);  // findCollisionsForGroup, L13
+          if (c && c->time < cur.time && (!earliest || *c < *earliest)) earliest = c;
+        }
+      if (earliest) {
+        // L14-L15: the earlier collision goes into the heap and is resolved first.
+        // DEVIATION(\alg{A.1} SAFER L15): the current collision goes back in too; dropped, it
+        // would be lost whenever the earlier one involves other bodies.
+        heap_.insert(*earliest);
+        heap_.insert(cur);
+        continue;
+      }
+    }
+    resolve(cur, events);  // simple L8-L18, safer L17-L29
+  }
+  // L19-L21 / L30-L32: every body's test state becomes valid at the end of the frame.
+  for (int i = 0; i < n; ++i) {
+    world_.bodies[i].s = test_[i].s;
+    world_.bodies[i].updateDerived();
+  }
+  return stats_;
+}
+
+}  // namespace
+
+TimewarpStepper::TimewarpStepper(const TimewarpParams& params) : params_(params) {
+  if (!(params.resolution > 0.0) || !std::isfinite(params.resolution))
+    throw std::invalid_argument("timewarp: resolution must be a finite number of seconds > 0");
+  if (!(params.depthTolerance >= 0.0) || !(params.sweptGap > 0.0) || !(params.nearMargin >= 0.0))
+    throw std::invalid_argument(
+        "timewarp: depthTolerance and nearMargin must be >= 0, sweptGap > 0 (m)");
+  if (params.maxEventsPerStep < 1)
+    throw std::invalid_argument("timewarp: maxEventsPerStep must be at least 1");
+}
+
+std::map<std::string, std::string> TimewarpStepper::parameters() const {
+  return {{"integrator", integratorName(params_.integrator)},
+          {"resolution_s", shortestText(params_.resolution)},
+          {"depth_tolerance_m", shortestText(params_.depthTolerance)},
+          {"swept_gap_m", shortestText(params_.sweptGap)},
+          {"near_margin_m", shortestText(params_.nearMargin)},
+          {"max_events_per_step", std::to_string(params_.maxEventsPerStep)},
+          {"fix_interpenetration", params_.fixInterpenetration ? "on" : "off"}};
+}
+
+StepStats TimewarpStepper::step(World& world, double dt) {
+  events_.clear();
+  Frame frame(world, dt, params_);
+  StepStats stats = frame.run(events_);
+  if (params_.fixInterpenetration)
+    fixContactConstraints(world, params_.contactMargin, params_.fix);  // L22 / L33
+  stats.contacts = static_cast<int>(findContacts(world, params_.contactMargin).size());
+  return stats;
+}
+
+}  // namespace boxsim
