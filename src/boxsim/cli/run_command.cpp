@@ -114,7 +114,7 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("--integrator", args->integrator,
                   "Integrator between collisions: forward_euler, semi_implicit_euler, "
                   "runge_kutta_4 "
-                  "(basic_colliding and analytic; default: semi_implicit_euler)");
+                  "(basic_colliding, analytic and the timewarps; default: semi_implicit_euler)");
   cmd->add_option("--contact-normal", args->contactNormal,
                   "Contact normal model of impulse and damped: separating_axis, "
                   "previous_closest_face (default), signed_distance")

@@ -109,6 +109,21 @@ int addFig5_1Row(World& world, const Vec3& origin) {
   return 5;
 }
 
+int addApproachingPairs(World& world, int count, double spacing, double gap, double speed) {
+  requirePositiveCount(count, "pair count");
+  for (int i = 0; i < count; ++i) {
+    const double gapI = gap * (1.0 + static_cast<double>(i) / count);
+    for (const int side : {-1, 1}) {
+      RigidBody b = cube(1.0, 1.0);
+      b.s.x = Vec3(side * 0.5 * (gapI + 1.0), 0.0, i * spacing);
+      b.updateDerived();
+      b.setVelocity(Vec3(-side * speed, 0.0, 0.0));
+      world.add(b, "pair" + std::to_string(i) + (side < 0 ? "_left" : "_right"));
+    }
+  }
+  return 2 * count;
+}
+
 Eigen::Vector3i clumpGrid(int count) {
   requirePositiveCount(count, "clump count");
   Eigen::Vector3i best(count, 1, 1);

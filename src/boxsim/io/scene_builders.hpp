@@ -87,6 +87,15 @@ int addBridge(World& world, bool withRightSupport = true);
 /// is A→B→C→D→E, a Newton's cradle. Returns 5.
 int addFig5_1Row(World& world, const Vec3& origin = Vec3::Zero());
 
+/// `count` independent head-on collisions (\thesis{§2.4.3}: events far apart, where the
+/// timewarp rewinds only the bodies involved): pair i is two unit cubes of 1 kg at
+/// z = i · spacing, faces g_i = gap (1 + i / count) m apart along x, approaching at `speed`
+/// m/s each. With gravity 0, pair i's cubes meet after g_i / (2 speed) s: every pair at its
+/// own time, between gap / (2 speed) and twice that. Names "pair<i>_left", "pair<i>_right".
+/// Returns 2 count; throws std::invalid_argument on count < 1.
+int addApproachingPairs(World& world, int count, double spacing = 10.0, double gap = 0.2,
+                        double speed = 3.0);
+
 /// The grid dimensions the clump builder uses for `count` cubes (nx >= ny >= nz, product
 /// == count, as close to a cube as possible).
 Eigen::Vector3i clumpGrid(int count);

@@ -163,12 +163,27 @@ class Frame {
     return both.widened(0.5 * world_.gravity.norm() * span * span + valid_[k].halfExtents.norm());
   }
 
-  /// findAllCollisions (\alg{A.1} L5).
+  /// findAllCollisions (\alg{A.1} L5): the pairs whose bounds (test states, or swept bounds)
+  /// overlap, found by sorting on the low x bound and sweeping, then each pair's collision.
   void findAllCollisions() {
     const int n = static_cast<int>(world_.bodies.size());
-    for (int a = 0; a < n; ++a)
-      for (int b = a + 1; b < n; ++b)
-        if (const auto c = collisionOf(a, b)) heap_.insert(*c);
+    std::vector<Bounds> bounds;
+    for (int k = 0; k < n; ++k)
+      bounds.push_back(params_.variant == TimewarpVariant::Swept ? sweptBounds(k)
+                                                                 : boundsOf(test_[k]));
+    std::vector<int> order(n);
+    for (int k = 0; k < n; ++k) order[k] = k;
+    std::sort(order.begin(), order.end(), [&](int p, int q) {
+      return std::tie(bounds[p].low.x(), p) < std::tie(bounds[q].low.x(), q);
+    });
+    std::vector<std::pair<int, int>> pairs;
+    for (int i = 0; i < n; ++i)
+      for (int j = i + 1; j < n && bounds[order[j]].low.x() <= bounds[order[i]].high.x(); ++j)
+        if (bounds[order[i]].overlaps(bounds[order[j]]))
+          pairs.emplace_back(std::min(order[i], order[j]), std::max(order[i], order[j]));
+    std::sort(pairs.begin(), pairs.end());  // pair order, whatever the sort on x did
+    for (const auto& [a, b] : pairs)
+      if (const auto c = collisionOf(a, b)) heap_.insert(*c);
   }
 
   /// addCollisionsForObject (\alg{A.1} L18 / L29).

@@ -31,6 +31,7 @@ std::string timewarpMethodName(TimewarpVariant variant);
 
 /// Parameters of the modified timewarp.
 struct TimewarpParams {
+  /// The procedure: simple, safer or swept.
   TimewarpVariant variant = TimewarpVariant::Simple;
   /// `resolution` of \alg{A.1} (s, > 0): bisection stops when the bracket of a collision time
   /// is narrower than this. 1e-5 s, as the basic colliding technique's time tolerance.
@@ -52,6 +53,7 @@ struct TimewarpParams {
   /// FIXINTERPENETRATION at the end of the frame (\alg{A.1} L22 / L33), with the slop and
   /// nudge of \alg{A.2}'s FIXCONTACTCONSTRAINTS, which implements \thesis{§4.4}.
   bool fixInterpenetration = true;
+  /// Slop and nudge of FIXINTERPENETRATION, in units of the upper body's smallest half extent.
   FixContactParams fix;
   /// m: pairs closer than this count as contacts in StepStats, and FIXINTERPENETRATION gathers
   /// contacts with it.
