@@ -29,12 +29,14 @@ std::string timewarpMethodName(TimewarpVariant variant) {
 
 namespace {
 
-/// A pending collision of the heap: its time (s after the frame's start) and its pair, a < b.
+/// A pending collision of the heap: its time (s after the frame's start: the first instant
+/// found touching) and its pair, a < b, and the last instant found apart (`before` <= time).
 /// Ordered by time, then pair, so equal times resolve in a fixed order (determinism).
 struct PendingCollision {
   double time = 0.0;
   int a = -1;
   int b = -1;
+  double before = 0.0;
   bool operator<(const PendingCollision& o) const {
     return std::tie(time, a, b) < std::tie(o.time, o.a, o.b);
   }
@@ -80,8 +82,14 @@ class Frame {
     return separatingAxisTest(Obb::of(a), Obb::of(b)).depth;
   }
 
+  /// The pair's manifold for an impulse: points closer than the swept variant's gap, so a
+  /// pair it stopped just apart still has a contact, and corners farther off are no part of it.
+  ContactManifold impulseManifold(const RigidBody& a, const RigidBody& b) const {
+    return collideBoxes(Obb::of(a), Obb::of(b), params_.sweptGap);
+  }
+
   bool approaching(const RigidBody& a, const RigidBody& b) const {
-    const ContactManifold m = collideBoxes(Obb::of(a), Obb::of(b), params_.contactMargin);
+    const ContactManifold m = impulseManifold(a, b);
     if (m.count == 0) return false;
     return relativeNormalVelocity(a, b, m.centroid(), m.normal) < 0.0;
   }
@@ -98,7 +106,7 @@ class Frame {
     double lo = std::max(validTime_[a], validTime_[b]);
     if (depth(stateAt(a, lo), stateAt(b, lo)) > params_.depthTolerance) {
       if (!approaching(stateAt(a, lo), stateAt(b, lo))) return std::nullopt;
-      return PendingCollision{lo, a, b};
+      return PendingCollision{lo, a, b, lo};
     }
     while (hi - lo > params_.resolution) {
       const double mid = 0.5 * (lo + hi);
@@ -109,7 +117,7 @@ class Frame {
       else
         lo = mid;
     }
-    return PendingCollision{hi, a, b};
+    return PendingCollision{hi, a, b, lo};
   }
 
   /// The swept variant's test of pair (a, b) over [max(validTimes), end]: conservative
@@ -130,13 +138,20 @@ class Frame {
     for (int iteration = 0; iteration < 1000 && t <= end_; ++iteration) {
       const RigidBody sa = stateAt(a, t), sb = stateAt(b, t);
       const double d = depth(sa, sb);
-      if (d > -params_.sweptGap) {
-        if (!approaching(sa, sb)) return std::nullopt;
-        return PendingCollision{t, a, b};
-      }
       if (speed <= 0.0) return std::nullopt;
+      if (d > -params_.sweptGap) {
+        if (approaching(sa, sb)) return PendingCollision{t, a, b, t};
+        // Within the gap but not approaching (just after a collision of this pair, or
+        // resting): step past the gap band. No point closes it faster than `speed`, so this
+        // overshoots a contact by at most sweptGap.
+        t += std::max(params_.resolution, (params_.sweptGap - d) / speed);
+        continue;
+      }
       t += -d / speed;
     }
+    // Out of iterations (a fast body sliding slowly closer: the bound counts its whole speed),
+    // or past the frame: the test states decide, with bisection, as in the simple variant.
+    if (depth(test_[a], test_[b]) > params_.depthTolerance) return bisect(a, b, end_);
     return std::nullopt;
   }
 
@@ -200,22 +215,28 @@ class Frame {
   }
 
   /// collideTwoObjects (\alg{A.1} L13 / L24): the Newtonian impulse at the centroid of the
-  /// pair's contact at time t, both bodies given at t; true when it changed their velocities.
-  bool collideTwoObjects(RigidBody& a, RigidBody& b) {
-    const ContactManifold m = collideBoxes(Obb::of(a), Obb::of(b), params_.contactMargin);
+  /// pair's contact `m`, applied to a and b; true when it changed their velocities.
+  bool collideTwoObjects(RigidBody& a, RigidBody& b, const ContactManifold& m) {
     if (m.count == 0) return false;
     return applyNewtonianImpulse(a, b, m.centroid(), m.normal, world_.restitution) > 0.0;
   }
 
   /// \alg{A.1} L8-L18 (simple) and L25-L29 (safer): resolve collision c, both bodies
   /// rewound to c.time, and look for their next collisions.
+  ///
+  /// DEVIATION(\alg{A.1} L11-L13): the contact is taken where the pair first touches
+  /// (c.time), the impulse is applied to the bodies where they were last apart (c.before,
+  /// within `resolution`), and that becomes their valid time, as the basic technique does.
+  /// Made valid at c.time, overlapping, the pair would look resting there and a second
+  /// collision of the same pair in the frame would be lost.
   void resolve(const PendingCollision& c, std::vector<TimewarpEvent>& events) {
+    const ContactManifold m = impulseManifold(stateAt(c.a, c.time), stateAt(c.b, c.time));
     for (const int index : {c.a, c.b}) {
       removeCollisionsForObject(index);                  // L10 / L20
-      valid_[index] = stateAt(index, c.time);            // L11 / L22-L23
-      validTime_[index] = std::max(validTime_[index], c.time);  // L12
+      valid_[index] = stateAt(index, c.before);          // L11 / L22-L23
+      validTime_[index] = std::max(validTime_[index], c.before);  // L12
     }
-    collideTwoObjects(valid_[c.a], valid_[c.b]);         // L13 / L24
+    collideTwoObjects(valid_[c.a], valid_[c.b], m);      // L13 / L24
     events.push_back(TimewarpEvent{c.time, c.a, c.b});
     ++stats_.events;
     for (const int index : {c.a, c.b}) {
@@ -300,9 +321,11 @@ StepStats Frame::run(std::vector<TimewarpEvent>& events) {
 TimewarpStepper::TimewarpStepper(const TimewarpParams& params) : params_(params) {
   if (!(params.resolution > 0.0) || !std::isfinite(params.resolution))
     throw std::invalid_argument("timewarp: resolution must be a finite number of seconds > 0");
-  if (!(params.depthTolerance >= 0.0) || !(params.sweptGap > 0.0) || !(params.nearMargin >= 0.0))
+  if (!(params.depthTolerance >= 0.0) || !(params.sweptGap > 0.0) || !(params.nearMargin >= 0.0) ||
+      !(params.contactMargin >= 0.0) || !std::isfinite(params.sweptGap + params.nearMargin))
     throw std::invalid_argument(
-        "timewarp: depthTolerance and nearMargin must be >= 0, sweptGap > 0 (m)");
+        "timewarp: depthTolerance, nearMargin and contactMargin must be finite numbers >= 0, "
+        "sweptGap > 0 (m)");
   if (params.maxEventsPerStep < 1)
     throw std::invalid_argument("timewarp: maxEventsPerStep must be at least 1");
 }
