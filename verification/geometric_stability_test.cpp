@@ -29,16 +29,6 @@ constexpr double kMargin = 1e-6;
 
 using Names = std::set<std::string>;
 
-/// Adds a box of the given half extents (m) at `centre` (m) with orientation q.
-void addBox(World& world, const std::string& name, const Vec3& halfExtents, const Vec3& centre,
-            const Quat& q = Quat::Identity()) {
-  RigidBody b = RigidBody::box(halfExtents, 1.0);
-  b.s.x = centre;
-  b.s.q = q;
-  b.updateDerived();
-  world.add(b, name);
-}
-
 /// Adds a box with orientation q at horizontal position (x, z), lowered until its lowest corner
 /// touches the plane y = planeY (m).
 void addBoxResting(World& world, const std::string& name, const Vec3& halfExtents, double x,

@@ -12,16 +12,6 @@ RigidBody cube(double size, double mass) {
   return RigidBody::box(Vec3::Constant(0.5 * size), mass);
 }
 
-/// Adds a box of 1 kg with the given half extents (m) at `centre` (m), orientation q.
-void addBox(World& world, const std::string& name, const Vec3& halfExtents, const Vec3& centre,
-            const Quat& q = Quat::Identity()) {
-  RigidBody b = RigidBody::box(halfExtents, 1.0);
-  b.s.x = centre;
-  b.s.q = q;
-  b.updateDerived();
-  world.add(b, name);
-}
-
 const Vec3 kUnitHalf = Vec3::Constant(0.5);
 
 void requirePositiveCount(int count, const char* what) {
@@ -74,6 +64,15 @@ int addPyramid(World& world, const PyramidSpec& spec) {
     }
   }
   return added;
+}
+
+int addBox(World& world, const std::string& name, const Vec3& halfExtents, const Vec3& centre,
+           const Quat& q) {
+  RigidBody b = RigidBody::box(halfExtents, 1.0);
+  b.s.x = centre;
+  b.s.q = q;
+  b.updateDerived();
+  return world.add(b, name);
 }
 
 int addOneCornerOver(World& world) {
