@@ -195,9 +195,7 @@ void writeNoClamp(const std::string& out) {
 World fig5_6Pyramid(int base) {
   World world;
   world.addGround(0.0, 50.0);
-  PyramidSpec spec{base, 1.0, 1.0, Vec3::Zero(), 0.05};
-  spec.omitted = {{0, base / 2}};
-  addPyramid(world, spec);
+  addPyramid(world, PyramidSpec{base, 1.0, 1.0, Vec3::Zero(), 0.05}, {{0, base / 2}});
   return world;
 }
 

@@ -42,9 +42,9 @@ int addTower(World& world, const TowerSpec& spec) {
   return spec.count;
 }
 
-int addPyramid(World& world, const PyramidSpec& spec) {
+int addPyramid(World& world, const PyramidSpec& spec, const std::vector<PyramidBox>& omitted) {
   requirePositiveCount(spec.base, "pyramid base");
-  for (const auto& [row, k] : spec.omitted)
+  for (const auto& [row, k] : omitted)
     if (row < 0 || row >= spec.base || k < 0 || k >= spec.base - row)
       throw std::invalid_argument("pyramid: omitted box (" + std::to_string(row) + ", " +
                                   std::to_string(k) + ") is not in a pyramid of base " +
@@ -54,8 +54,7 @@ int addPyramid(World& world, const PyramidSpec& spec) {
   for (int row = 0; row < spec.base; ++row) {
     const int inRow = spec.base - row;
     for (int k = 0; k < inRow; ++k) {
-      if (std::find(spec.omitted.begin(), spec.omitted.end(), std::make_pair(row, k)) !=
-          spec.omitted.end())
+      if (std::find(omitted.begin(), omitted.end(), PyramidBox(row, k)) != omitted.end())
         continue;
       RigidBody b = cube(spec.size, spec.mass);
       b.s.x = spec.origin + Vec3((k - 0.5 * (inRow - 1)) * pitch, (row + 0.5) * spec.size, 0.0);

@@ -42,9 +42,6 @@ struct PyramidSpec {
   double mass = 1.0;   ///< kg
   Vec3 origin = Vec3::Zero();  ///< bottom centre, m
   double gap = 0.0;    ///< horizontal gap between neighbours in a row, m, >= 0
-  /// Boxes left out, by (row, index in the row), both from 0 at the bottom left: {0, 4} is the
-  /// bottom centre of a base of 9 (\thesis{Fig. 5.6}). Pairs outside the pyramid are an error.
-  std::vector<std::pair<int, int>> omitted;
 };
 
 /// `count` cubes on a regular grid of the given spacing centred on `center`, each moving at
@@ -63,8 +60,13 @@ struct ClumpSpec {
 int addDie(World& world, const DieSpec& spec);
 /// Adds the tower; returns spec.count.
 int addTower(World& world, const TowerSpec& spec);
-/// Adds the pyramid; returns base (base + 1) / 2.
-int addPyramid(World& world, const PyramidSpec& spec);
+/// A box of a pyramid: its row and its index in the row, both from 0 at the bottom left.
+using PyramidBox = std::pair<int, int>;
+
+/// Adds the pyramid without the boxes in `omitted` ({0, 4} is the bottom centre of a base of
+/// 9, \thesis{Fig. 5.6}); returns the boxes added, base (base + 1) / 2 when none is omitted.
+/// Throws std::invalid_argument naming an omitted box that is not in the pyramid.
+int addPyramid(World& world, const PyramidSpec& spec, const std::vector<PyramidBox>& omitted = {});
 /// Adds the clump; returns spec.count.
 int addClump(World& world, const ClumpSpec& spec);
 
