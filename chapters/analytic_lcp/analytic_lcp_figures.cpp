@@ -30,6 +30,21 @@ using namespace boxsim;
 
 constexpr double kDt = 1.0 / 60.0;
 
+/// ms per call of `work`, repeated for at least 0.1 s so the clock's resolution does not
+/// matter.
+template <typename Work>
+double msPerCall(Work work) {
+  const auto start = std::chrono::steady_clock::now();
+  int repetitions = 0;
+  double elapsed = 0.0;
+  do {
+    work();
+    ++repetitions;
+    elapsed = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  } while (elapsed < 100.0);
+  return elapsed / repetitions;
+}
+
 /// Collision events and kinetic energy of every frame of the die under one stepper.
 struct DieRun {
   std::vector<int> events;
@@ -117,16 +132,7 @@ void writeSolveTimes(const std::string& out) {
                                          LcpLinearSolver::CompleteOrthogonal}) {
       LcpParams params;
       params.linearSolver = solver;
-      // Repeat for at least 0.1 s, so the clock's resolution does not matter.
-      const auto start = std::chrono::steady_clock::now();
-      int repetitions = 0;
-      double elapsed = 0.0;
-      do {
-        solveContactLcp(A, b, params);
-        ++repetitions;
-        elapsed = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-      } while (elapsed < 100.0);
-      text << " " << elapsed / repetitions;
+      text << " " << msPerCall([&] { solveContactLcp(A, b, params); });
     }
     text << "\n";
   }
@@ -250,18 +256,11 @@ void writePyramidStability(const std::string& out) {
     AnalyticParams params;
     params.useGeometricStability = exclusion;
     const AnalyticStepper stepper(params);
-    const auto start = std::chrono::steady_clock::now();
-    int repetitions = 0;
-    double elapsed = 0.0;
-    do {
-      stepper.contactWrenches(world, kDt);
-      ++repetitions;
-      elapsed = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    } while (elapsed < 100.0);
+    const double ms = msPerCall([&] { stepper.contactWrenches(world, kDt); });
     char line[160];
     std::snprintf(line, sizeof line, "# %s: %d contacts, %.2f ms\n",
                   exclusion ? "with_exclusion" : "full_lcp", stepper.lastLcpSize(),
-                  elapsed / repetitions);
+                  ms);
     text << line;
   }
   text << "# columns: x y half_x half_y stable\n";

@@ -104,8 +104,9 @@ class Frame {
   /// FIXINTERPENETRATION handles, not an event).
   std::optional<PendingCollision> bisect(int a, int b, double hi) {
     double lo = std::max(validTime_[a], validTime_[b]);
-    if (depth(stateAt(a, lo), stateAt(b, lo)) > params_.depthTolerance) {
-      if (!approaching(stateAt(a, lo), stateAt(b, lo))) return std::nullopt;
+    const RigidBody startA = stateAt(a, lo), startB = stateAt(b, lo);
+    if (depth(startA, startB) > params_.depthTolerance) {
+      if (!approaching(startA, startB)) return std::nullopt;
       return PendingCollision{lo, a, b, lo};
     }
     while (hi - lo > params_.resolution) {
