@@ -1,0 +1,87 @@
+/// \file
+/// One scene, several engines: the neutral scene description the peer harness hands to
+/// boxsim, Bullet and ODE, and the small interface each engine implements so that the harness
+/// times and measures them the same way.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "boxsim/core/math.hpp"
+#include "boxsim/core/world.hpp"
+
+namespace boxsim::peers {
+
+/// A box as every engine receives it.
+struct PeerBox {
+  std::string name;                    ///< the body's name in the boxsim scene
+  Vec3 halfExtents = Vec3::Constant(0.5);  ///< m
+  double mass = 1.0;                   ///< kg; ignored for immovable boxes
+  bool immovable = false;              ///< the ground and other scenery
+  Vec3 x = Vec3::Zero();               ///< centre, m
+  Quat q = Quat::Identity();           ///< orientation, body to world
+  Vec3 v = Vec3::Zero();               ///< linear velocity, m/s
+  Vec3 omega = Vec3::Zero();           ///< angular velocity, rad/s
+  /// s; a box with a launch time >= 0 waits, immovable, at its pose until then and then moves
+  /// with v and omega (the projectile of the shot pyramids). -1: moves from the start.
+  double launchTime = -1.0;
+};
+
+/// A scene of the comparison.
+struct PeerScene {
+  std::string name;              ///< e.g. "pyramid10_shot"
+  std::vector<PeerBox> boxes;    ///< in boxsim's body order
+  Vec3 gravity = standardGravity();  ///< m/s^2
+  double restitution = 0.9;      ///< Newtonian coefficient (boxsim's global one)
+  /// Coulomb friction coefficient of every contact, for the engines that model friction.
+  /// boxsim's impulse methods are frictionless and damp sliding instead (\thesis{§5.2}).
+  double friction = 0.5;
+  double duration = 5.0;         ///< simulated time, s
+  /// The body whose drift the table reports (the tower's top box), or -1.
+  int trackedBody = -1;
+  /// For the die: the body whose time of coming to rest the table reports, or -1.
+  int restingBody = -1;
+  /// The boxsim world the scene came from (boxsim's engine steps a copy of it).
+  World world;
+};
+
+/// Builds a PeerScene from a boxsim world (bodies in order; launches as launch times).
+PeerScene peerSceneFromWorld(const std::string& name, const World& world, double duration);
+
+/// The pose and velocity of one body after a step, as an engine reports them.
+struct PeerPose {
+  Vec3 x = Vec3::Zero();      ///< m
+  Quat q = Quat::Identity();  ///< body to world
+  Vec3 v = Vec3::Zero();      ///< m/s
+  Vec3 omega = Vec3::Zero();  ///< rad/s
+};
+
+/// An engine under comparison.
+class PeerEngine {
+ public:
+  virtual ~PeerEngine() = default;
+  /// Name in the table, e.g. "boxsim damped", "Bullet 3.24".
+  virtual std::string name() const = 0;
+  /// The settings the engine runs with, for the table's notes.
+  virtual std::string settings() const = 0;
+  /// Builds the engine's world from the scene; called once before the first step.
+  virtual void load(const PeerScene& scene) = 0;
+  /// Advances by dt (s); `t` is the time at the start of the step (for launches).
+  virtual void step(double dt, double t) = 0;
+  /// The state of every box, in scene order (immovable ones included).
+  virtual void read(std::vector<PeerPose>& poses) const = 0;
+};
+
+/// boxsim under one of its methods (techniques.hpp), e.g. "damped".
+std::unique_ptr<PeerEngine> makeBoxsimEngine(const std::string& method);
+#ifdef BOXSIM_HAVE_BULLET
+/// Bullet's btDiscreteDynamicsWorld with its default solver (sequential impulse).
+std::unique_ptr<PeerEngine> makeBulletEngine();
+#endif
+#ifdef BOXSIM_HAVE_ODE
+/// ODE with dWorldQuickStep and its default iterations.
+std::unique_ptr<PeerEngine> makeOdeEngine();
+#endif
+
+}  // namespace boxsim::peers

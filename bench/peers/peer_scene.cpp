@@ -1,0 +1,83 @@
+#include <memory>
+#include <stdexcept>
+
+#include "boxsim/core/stepper.hpp"
+#include "boxsim/techniques.hpp"
+#include "peer_engine.hpp"
+
+namespace boxsim::peers {
+
+PeerScene peerSceneFromWorld(const std::string& name, const World& world, double duration) {
+  PeerScene scene;
+  scene.name = name;
+  scene.gravity = world.gravity;
+  scene.restitution = world.restitution;
+  scene.duration = duration;
+  scene.world = world;
+  for (std::size_t i = 0; i < world.bodies.size(); ++i) {
+    const RigidBody& b = world.bodies[i];
+    PeerBox box;
+    box.name = world.names[i];
+    box.halfExtents = b.halfExtents;
+    box.immovable = b.immovable;
+    box.mass = b.immovable ? 0.0 : b.mass;
+    box.x = b.s.x;
+    box.q = b.s.q;
+    box.v = b.v;
+    box.omega = b.omega;
+    scene.boxes.push_back(box);
+  }
+  // A launched body waits immovable at its pose; it gets its mass and velocities at launch.
+  for (const Launch& l : world.launches) {
+    PeerBox& box = scene.boxes[static_cast<std::size_t>(l.body)];
+    box.immovable = false;
+    box.mass = l.mass;
+    box.v = l.velocity;
+    box.omega = l.angularVelocity;
+    box.launchTime = l.time;
+  }
+  return scene;
+}
+
+namespace {
+
+/// boxsim itself, through the same Stepper interface the command line uses.
+class BoxsimEngine : public PeerEngine {
+ public:
+  explicit BoxsimEngine(const std::string& method)
+      : method_(method), stepper_(makeStepper(method)) {}
+  std::string name() const override { return "boxsim " + method_; }
+  std::string settings() const override {
+    std::string text;
+    for (const auto& [key, value] : stepper_->parameters())
+      if (key == "integrator" || key == "sleep" || key == "contact_gathering")
+        text += (text.empty() ? "" : ", ") + key + " " + value;
+    return text.empty() ? "defaults" : text;
+  }
+  void load(const PeerScene& scene) override { world_ = scene.world; }
+  void step(double dt, double t) override {
+    // As simulate(): a body launched at T starts moving with the step that begins at T.
+    world_.applyLaunches(t + 1e-9 * dt);
+    stepper_->step(world_, dt);
+  }
+  void read(std::vector<PeerPose>& poses) const override {
+    poses.resize(world_.bodies.size());
+    for (std::size_t i = 0; i < world_.bodies.size(); ++i) {
+      const RigidBody& b = world_.bodies[i];
+      poses[i] = PeerPose{b.s.x, b.s.q, b.v, b.omega};
+    }
+  }
+
+ private:
+  std::string method_;
+  std::unique_ptr<Stepper> stepper_;
+  World world_;
+};
+
+}  // namespace
+
+std::unique_ptr<PeerEngine> makeBoxsimEngine(const std::string& method) {
+  return std::make_unique<BoxsimEngine>(method);
+}
+
+}  // namespace boxsim::peers
