@@ -8,7 +8,9 @@
 #include "boxsim/collision/sweep_and_prune.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
+#include <limits>
 
 #include "boxsim/collision/broad_phase.hpp"
 
@@ -21,6 +23,16 @@ namespace {
 /// An immovable body is swept like the others unless its largest half extent is more than this
 /// many times the largest half extent of any movable body: then it is a ground or a wall.
 constexpr double kSweptSizeRatio = 4.0;
+/// Swept bodies from this many on are paired through a uniform grid instead of the sweep: a
+/// regular arrangement (the clump of Fig. 6.7, a pyramid) makes the sweep's candidate list grow
+/// faster than n, the grid's stays linear.
+constexpr std::size_t kGridMinBodies = 64;
+/// In the grid, a body larger than this many times the median extent is tested directly, so a
+/// few large boxes do not make every cell large.
+constexpr double kGridSizeRatio = 4.0;
+/// The grid is used only when it has at most this many cells per gridded body (its memory and
+/// its sweep over empty cells stay linear); a scattered scene goes to the sweep.
+constexpr double kGridCellsPerBody = 8.0;
 
 struct Interval {
   double lo = 0.0;
@@ -59,6 +71,169 @@ void sortPairs(std::vector<std::pair<int, int>>& pairs, int n) {
   countingSortBy(&std::pair<int, int>::first);
 }
 
+/// Tests each directly tested body against every other body (a pair of two direct bodies once,
+/// from its lower index), appending the pairs that pass boundsWithin.
+void testDirect(const World& world, const std::vector<Vec3>& lo, const std::vector<Vec3>& hi,
+                const std::vector<int>& direct, const std::vector<char>& isDirect, double margin,
+                std::vector<std::pair<int, int>>& pairs) {
+  const int n = static_cast<int>(world.bodies.size());
+  for (int d : direct) {
+    for (int j = 0; j < n; ++j) {
+      // A pair of two direct bodies is tested once, from its lower index.
+      if (j == d || (isDirect[j] && j < d)) continue;
+      // Two immovable bodies (ground and wall) never need a contact between them.
+      if (world.bodies[d].immovable && world.bodies[j].immovable) continue;
+      if (boundsWithin(lo[d], hi[d], lo[j], hi[j], margin))
+        pairs.emplace_back(std::min(d, j), std::max(d, j));
+    }
+  }
+}
+
+/// Sort and sweep over the `swept` bodies along the axis on which their centres spread most.
+void sweepPairs(const World& world, const std::vector<Vec3>& lo, const std::vector<Vec3>& hi,
+                const std::vector<int>& swept, double margin,
+                std::vector<std::pair<int, int>>& pairs) {
+  if (swept.empty()) return;
+  const int axis = axisOfLargestSpread(world, swept);
+  std::vector<Interval> intervals;
+  intervals.reserve(swept.size());
+  for (int i : swept) intervals.push_back(Interval{lo[i][axis], hi[i][axis], i});
+  // Ties broken by body index make the order total, so std::sort (not stable) sweeps the
+  // same way on every run and every standard library. The result would not change without
+  // it, since sortPairs orders the pairs anyway, but a sweep that can be replayed can be
+  // debugged.
+  std::sort(intervals.begin(), intervals.end(), [](const Interval& a, const Interval& b) {
+    return a.lo < b.lo || (a.lo == b.lo && a.body < b.body);
+  });
+
+  // The bounds in sweep order, so the inner loop reads memory in sequence instead of
+  // jumping to each body's bounds by index.
+  const std::size_t m = intervals.size();
+  std::vector<Vec3> sortedLo(m), sortedHi(m);
+  for (std::size_t p = 0; p < m; ++p) {
+    sortedLo[p] = lo[intervals[p].body];
+    sortedHi[p] = hi[intervals[p].body];
+  }
+
+  for (std::size_t p = 0; p < m; ++p) {
+    const double end = intervals[p].hi;
+    for (std::size_t q = p + 1; q < m; ++q) {
+      // intervals[q].lo never decreases with q and rounding is monotone, so once
+      // intervals[q].lo - end exceeds margin it does for every later q: boundsWithin would
+      // reject them all along this axis.
+      if (intervals[q].lo - end > margin) break;
+      if (boundsWithin(sortedLo[p], sortedHi[p], sortedLo[q], sortedHi[q], margin)) {
+        const int a = intervals[p].body, b = intervals[q].body;
+        if (world.bodies[a].immovable && world.bodies[b].immovable) continue;
+        pairs.emplace_back(std::min(a, b), std::max(a, b));
+      }
+    }
+  }
+}
+
+/// A uniform grid over the gridded bodies: each body sits in the cell of the lower corner of its
+/// bounds, and the cells are at least as wide as any gridded body's bounds plus the margin, so
+/// two bodies whose bounds come within the margin sit in the same or in adjacent cells.
+struct Grid {
+  Vec3 origin = Vec3::Zero();                   ///< lower corner of cell (0, 0, 0), m
+  double h = 1.0;                               ///< cell width, m
+  Eigen::Vector3i dims = Eigen::Vector3i::Ones();  ///< cells along x, y, z
+  std::vector<int> start;  ///< bodies of cell c are order[start[c], start[c + 1])
+  std::vector<int> order;  ///< gridded bodies by cell, by body index within a cell
+};
+
+/// Builds the grid over `swept`, or returns false when a grid would not pay (the cells would
+/// outnumber the bodies many times: a scattered scene, which the sweep handles well). Bodies
+/// more than kGridSizeRatio times the median extent would make every cell large: they move to
+/// `direct` instead.
+bool buildGrid(const std::vector<Vec3>& lo, const std::vector<Vec3>& hi,
+               const std::vector<int>& swept, double margin, std::vector<int>& direct,
+               std::vector<char>& isDirect, Grid& grid) {
+  std::vector<double> extent(swept.size());
+  for (std::size_t k = 0; k < swept.size(); ++k)
+    extent[k] = (hi[swept[k]] - lo[swept[k]]).maxCoeff();
+  std::vector<double> sorted = extent;
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(sorted.size() / 2), sorted.end());
+  const double median = sorted[sorted.size() / 2];
+  std::vector<int> gridded;
+  gridded.reserve(swept.size());
+  double largest = 0.0;
+  Vec3 lowest = Vec3::Constant(std::numeric_limits<double>::infinity());
+  Vec3 highest = -lowest;
+  double scale = 0.0;
+  for (std::size_t k = 0; k < swept.size(); ++k) {
+    if (extent[k] > kGridSizeRatio * median) continue;
+    gridded.push_back(swept[k]);
+    largest = std::max(largest, extent[k]);
+    lowest = lowest.cwiseMin(lo[swept[k]]);
+    highest = highest.cwiseMax(lo[swept[k]]);
+    scale = std::max(scale, hi[swept[k]].cwiseAbs().maxCoeff());
+  }
+  // Slack for rounding: cell indices come from (lo - origin) / h in floating point, and a pair
+  // whose lower corners are a hair less than h apart must never land two cells apart.
+  grid.h = (largest + margin) * (1.0 + 1e-6) + 1e-9 * scale + 1e-300;
+  grid.origin = lowest;
+  double cells = 1.0;
+  for (int k = 0; k < 3; ++k) {
+    const double d = std::floor((highest[k] - lowest[k]) / grid.h) + 1.0;
+    cells *= d;
+    grid.dims[k] = static_cast<int>(std::min(d, 1e9));
+  }
+  if (!(cells <= kGridCellsPerBody * static_cast<double>(gridded.size()))) return false;
+
+  for (std::size_t k = 0; k < swept.size(); ++k)
+    if (extent[k] > kGridSizeRatio * median) {
+      direct.push_back(swept[k]);
+      isDirect[swept[k]] = 1;
+    }
+  // Counting sort of the bodies by cell; bodies keep their index order within a cell.
+  std::vector<int> cellOf(gridded.size());
+  grid.start.assign(static_cast<std::size_t>(cells) + 1, 0);
+  for (std::size_t g = 0; g < gridded.size(); ++g) {
+    const Vec3 c = ((lo[gridded[g]] - grid.origin) / grid.h).array().floor();
+    cellOf[g] = (static_cast<int>(c.z()) * grid.dims.y() + static_cast<int>(c.y())) * grid.dims.x() +
+                static_cast<int>(c.x());
+    ++grid.start[static_cast<std::size_t>(cellOf[g]) + 1];
+  }
+  for (std::size_t c = 1; c < grid.start.size(); ++c) grid.start[c] += grid.start[c - 1];
+  grid.order.resize(gridded.size());
+  std::vector<int> next(grid.start.begin(), grid.start.end() - 1);
+  for (std::size_t g = 0; g < gridded.size(); ++g) grid.order[next[cellOf[g]]++] = gridded[g];
+  return true;
+}
+
+/// The pairs of gridded bodies: each cell against itself and its 13 neighbours that follow it
+/// (dz > 0, or dz = 0 and dy > 0, or dz = dy = 0 and dx > 0), so each pair of cells is visited
+/// once.
+void gridPairs(const World& world, const std::vector<Vec3>& lo, const std::vector<Vec3>& hi,
+               const Grid& grid, double margin, std::vector<std::pair<int, int>>& pairs) {
+  const auto test = [&](int a, int b) {
+    if (world.bodies[a].immovable && world.bodies[b].immovable) return;
+    if (boundsWithin(lo[a], hi[a], lo[b], hi[b], margin))
+      pairs.emplace_back(std::min(a, b), std::max(a, b));
+  };
+  const Eigen::Vector3i& d = grid.dims;
+  for (int z = 0; z < d.z(); ++z)
+    for (int y = 0; y < d.y(); ++y)
+      for (int x = 0; x < d.x(); ++x) {
+        const int c = (z * d.y() + y) * d.x() + x;
+        const int begin = grid.start[c], end = grid.start[c + 1];
+        if (begin == end) continue;
+        for (int p = begin; p < end; ++p)
+          for (int q = p + 1; q < end; ++q) test(grid.order[p], grid.order[q]);
+        for (int dz = 0; dz <= 1; ++dz)
+          for (int dy = dz == 0 ? 0 : -1; dy <= 1; ++dy)
+            for (int dx = (dz == 0 && dy == 0) ? 1 : -1; dx <= 1; ++dx) {
+              const int nx = x + dx, ny = y + dy, nz = z + dz;
+              if (nx < 0 || ny < 0 || nx >= d.x() || ny >= d.y() || nz >= d.z()) continue;
+              const int o = (nz * d.y() + ny) * d.x() + nx;
+              for (int p = begin; p < end; ++p)
+                for (int q = grid.start[o]; q < grid.start[o + 1]; ++q)
+                  test(grid.order[p], grid.order[q]);
+            }
+      }
+}
+
 }  // namespace
 
 std::vector<std::pair<int, int>> sweepAndPrunePairs(const World& world, double margin,
@@ -91,55 +266,13 @@ std::vector<std::pair<int, int>> sweepAndPrunePairs(const World& world, double m
   // room enough for all of them from the start (it is only a starting capacity).
   std::vector<std::pair<int, int>> pairs;
   pairs.reserve(4 * static_cast<std::size_t>(n));
-  for (int d : direct) {
-    for (int j = 0; j < n; ++j) {
-      // A pair of two direct bodies is tested once, from its lower index.
-      if (j == d || (isDirect[j] && j < d)) continue;
-      // Two immovable bodies (ground and wall) never need a contact between them.
-      if (world.bodies[d].immovable && world.bodies[j].immovable) continue;
-      if (boundsWithin(lo[d], hi[d], lo[j], hi[j], margin))
-        pairs.emplace_back(std::min(d, j), std::max(d, j));
-    }
-  }
-
-  if (!swept.empty()) {
-    const int axis = axisOfLargestSpread(world, swept);
-    std::vector<Interval> intervals;
-    intervals.reserve(swept.size());
-    for (int i : swept) intervals.push_back(Interval{lo[i][axis], hi[i][axis], i});
-    // Ties broken by body index make the order total, so std::sort (not stable) sweeps the
-    // same way on every run and every standard library. The result would not change without
-    // it, since sortPairs orders the pairs anyway, but a sweep that can be replayed can be
-    // debugged.
-    std::sort(intervals.begin(), intervals.end(), [](const Interval& a, const Interval& b) {
-      return a.lo < b.lo || (a.lo == b.lo && a.body < b.body);
-    });
-
-    // The bounds in sweep order, so the inner loop reads memory in sequence instead of
-    // jumping to each body's bounds by index.
-    const std::size_t m = intervals.size();
-    std::vector<Vec3> sortedLo(m), sortedHi(m);
-    for (std::size_t p = 0; p < m; ++p) {
-      sortedLo[p] = lo[intervals[p].body];
-      sortedHi[p] = hi[intervals[p].body];
-    }
-
-    for (std::size_t p = 0; p < m; ++p) {
-      const double end = intervals[p].hi;
-      for (std::size_t q = p + 1; q < m; ++q) {
-        // intervals[q].lo never decreases with q and rounding is monotone, so once
-        // intervals[q].lo - end exceeds margin it does for every later q: boundsWithin would
-        // reject them all along this axis.
-        if (intervals[q].lo - end > margin) break;
-        if (boundsWithin(sortedLo[p], sortedHi[p], sortedLo[q], sortedHi[q], margin)) {
-          const int a = intervals[p].body, b = intervals[q].body;
-          if (world.bodies[a].immovable && world.bodies[b].immovable) continue;
-          pairs.emplace_back(std::min(a, b), std::max(a, b));
-        }
-      }
-    }
-  }
-
+  Grid grid;
+  if (swept.size() >= kGridMinBodies && buildGrid(lo, hi, swept, margin, direct, isDirect, grid))
+    gridPairs(world, lo, hi, grid, margin, pairs);
+  else
+    sweepPairs(world, lo, hi, swept, margin, pairs);
+  // After the grid: it may have moved outsized bodies to the directly tested ones.
+  testDirect(world, lo, hi, direct, isDirect, margin, pairs);
   sortPairs(pairs, n);
   return pairs;
 }
