@@ -168,3 +168,67 @@ TEST_CASE("boxsim render --colour colours a named body; a bad name or colour exi
   CHECK_THAT(colour.stderrText, Contains("NAME=RRGGBB"));
   CHECK_FALSE(fs::exists(bad));
 }
+
+TEST_CASE("boxsim run --filter writes the filtered trajectory and names the filter in its header",
+          "[cli][filtering]") {
+  const ScratchDir kDir;
+  const std::string die = std::string(BOXSIM_SOURCE_DIR) + "/chapters/impulse_damped/scenes/die.json";
+  const std::string raw = (kDir / "raw.dat").string();
+  const std::string box = (kDir / "box.dat").string();
+  REQUIRE(runBoxsim(kDir, "run " + die + " --method impulse --duration 1 -q --out " + raw).status == 0);
+  REQUIRE(runBoxsim(kDir, "run " + die + " --method impulse --duration 1 -q --filter box "
+                          "--filter-half-width 3 --out " + box).status == 0);
+  const boxsim::Trajectory r = boxsim::readTrajectory(raw);
+  const boxsim::Trajectory b = boxsim::readTrajectory(box);
+  REQUIRE(b.frames.size() == r.frames.size());
+  CHECK(b.meta.at("filter") == "box");
+  CHECK(b.meta.at("box_half_width") == "3");
+  CHECK(b.frames.back().t == r.frames.back().t);
+  // In free fall (the die lands at frame 32) the filter lowers the parabola by g dt^2 H(H+1)/6.
+  CHECK(b.frames[20].x[1].y() < r.frames[20].x[1].y());
+  const std::string envelope = (kDir / "envelope.dat").string();
+  REQUIRE(runBoxsim(kDir, "run " + die + " --method impulse --duration 1 -q --filter envelope "
+                          "--envelope-radius 0.05 --envelope-angle 0.1 --out " + envelope).status == 0);
+  const boxsim::Trajectory e = boxsim::readTrajectory(envelope);
+  CHECK(e.meta.at("filter") == "envelope");
+  CHECK(e.meta.at("envelope_radius") == "0.05 m");
+  CHECK(e.meta.at("envelope_angle") == "0.1 rad");
+}
+
+TEST_CASE("boxsim filter filters a recorded run; bad filter options exit non-zero and write nothing",
+          "[cli][filtering][input]") {
+  const ScratchDir kDir;
+  const std::string die = std::string(BOXSIM_SOURCE_DIR) + "/chapters/impulse_damped/scenes/die.json";
+  const std::string raw = (kDir / "raw.dat").string();
+  REQUIRE(runBoxsim(kDir, "run " + die + " --method impulse --duration 1 -q --out " + raw).status == 0);
+  const std::string out = (kDir / "env.dat").string();
+  REQUIRE(runBoxsim(kDir, "filter " + raw + " --filter envelope -o " + out).status == 0);
+  const boxsim::Trajectory e = boxsim::readTrajectory(out);
+  CHECK(e.frames.size() == boxsim::readTrajectory(raw).frames.size());
+  CHECK(e.meta.at("filter") == "envelope");
+  CHECK(e.meta.at("method") == "impulse");  // the run's own header lines are kept
+
+  const std::string bad = (kDir / "bad.dat").string();
+  struct Case {
+    std::string arguments;
+    const char* expected;
+  };
+  const Case cases[] = {
+      {"filter " + raw + " --filter box --filter-half-width -1 -o " + bad, "half width"},
+      {"filter " + raw + " --filter envelope --envelope-radius -0.1 -o " + bad, "--envelope-radius"},
+      {"filter " + raw + " --filter envelope --envelope-angle nan -o " + bad, "--envelope-angle"},
+      {"filter " + raw + " --filter box --envelope-radius 0.1 -o " + bad, "takes no --envelope-radius"},
+      {"filter " + raw + " --filter envelope --filter-half-width 2 -o " + bad, "takes no --filter-half-width"},
+      {"filter " + raw + " --filter blur -o " + bad, "blur"},
+      {"filter " + raw + " -o " + bad, "--filter"},
+      {"run " + die + " --filter-half-width 2 -o " + bad, "need a filter"},
+      {"run " + die + " --filter envelope --envelope-radius inf -o " + bad, "--envelope-radius"},
+  };
+  for (const Case& c : cases) {
+    INFO(c.arguments);
+    const Result r = runBoxsim(kDir, c.arguments);
+    CHECK(r.status != 0);
+    CHECK_THAT(r.stderrText, Contains(c.expected));
+    CHECK_FALSE(fs::exists(bad));
+  }
+}

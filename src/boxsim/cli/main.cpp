@@ -10,6 +10,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   boxsim::cli::addRunCommand(app);
   boxsim::cli::addRenderCommand(app);
+  boxsim::cli::addFilterCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

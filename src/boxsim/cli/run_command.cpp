@@ -25,6 +25,7 @@ struct RunArgs {
   double duration = 5.0;
   std::string out;
   bool quiet = false;
+  FilterChoice filter;  // thesis §5.5; empty name: the raw trajectory is written
 };
 
 /// A one-line progress bar on stderr, drawn only once the run has taken over a second.
@@ -75,6 +76,7 @@ int run(const RunArgs& args) {
   // Build the stepper before loading the scene so an unknown method fails fast.
   std::unique_ptr<Stepper> stepper = makeStepper(args.method, options);
   checkedStepCount(args.dt, args.duration, 1);
+  validateFilterChoice(args.filter);
   Scene scene = loadScene(args.scene);
   Recorder recorder(scene.world,
                     runParameters(*stepper, scene.world, args.scene, args.dt, args.duration));
@@ -85,7 +87,10 @@ int run(const RunArgs& args) {
   simulateOptions.progress = [&bar](double f) { bar.update(f); };
   const SimulateSummary summary = simulate(scene.world, *stepper, simulateOptions, recorder);
   bar.finish();
-  recorder.write(args.out);
+  if (args.filter.name.empty())
+    recorder.write(args.out);
+  else
+    writeTrajectory(args.out, applyFilter(recorder.trajectory(), args.filter));
   if (!args.quiet)
     std::cerr << "boxsim run: " << summary.steps << " steps, " << summary.events
               << (summary.bisections > 0
@@ -138,6 +143,7 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("--out,-o", args->out, "Trajectory file to write (.dat, gnuplot columns)")
       ->required();
   cmd->add_flag("--quiet,-q", args->quiet, "No progress bar and no summary");
+  addFilterOptions(*cmd, args->filter, false);
   cmd->callback([args] {
     try {
       run(*args);
