@@ -1,0 +1,39 @@
+# Thesis §6.2, Fig. 6.3: two rotating frames in one group. Cube A pivots about the table's edge
+# and plank B about A's top right edge (a double hinge), integrated at dt = 1/60 s by six
+# methods with the sticking contact forces of each instant. Left and middle: the signed drift
+# of the table-edge pivot and of the A-B hinge (mean over each contact's two points; + the
+# material points have separated, - interpenetrating). Right: the largest distance between any
+# two material points that should coincide, log scale (exact zeros are not drawn; no key: the
+# colours are the other panels').
+# Data: fig6_3_penetration_vs_time.dat. Usage: gnuplot -e "datadir='...'; outdir='...'" fig6_3_penetration_vs_time.gp
+data = datadir.'/fig6_3_penetration_vs_time.dat'
+array colour[6] = ["#d62728", "#ff7f0e", "#9467bd", "#1f77b4", "#2ca02c", "#17becf"]
+array dash[6] = [1, 1, 2, 1, 1, 2]
+do for [kind in "png svg"] {
+  if (kind eq "png") { set terminal pngcairo size 1500,480 enhanced font "DejaVu Sans,11" }
+  else { set terminal svg size 1500,480 enhanced font "DejaVu Sans,11" }
+  set output outdir.'/fig6_3_penetration_vs_time.'.kind
+  set multiplot layout 1,3 title "Fig. 6.3: a double hinge (A on the table's edge, B on A's edge), dt = 1/60 s"
+  set grid
+  set xlabel "t (s)"
+  set key top left font ",9"
+  set ylabel "table-edge pivot drift (mm): + apart, - into the table"
+  plot for [i=0:5] data index i using 1:($5 * 1e3) with linespoints lw 2 pt 7 ps 0.6 dt dash[i+1] \
+       lc rgb colour[i+1] title columnheader(1)
+  set ylabel "A-B hinge drift (mm): + apart, - B into A"
+  set key top left
+  plot for [i=0:5] data index i using 1:($6 * 1e3) with linespoints lw 2 pt 7 ps 0.6 dt dash[i+1] \
+       lc rgb colour[i+1] title columnheader(1)
+  set logscale y
+  set format y "10^{%L}"
+  set yrange [1e-18:1e-1]
+  set ylabel "largest |p_b - p_a| over all contact points (m)"
+  unset key  # the colours are those of the other panels' keys
+  plot for [i=0:5] data index i using 1:7 with linespoints lw 2 pt 7 ps 0.6 dt dash[i+1] \
+       lc rgb colour[i+1] title columnheader(1)
+  unset logscale y
+  set format y "%g"
+  set autoscale y
+  unset multiplot
+  set output
+}
