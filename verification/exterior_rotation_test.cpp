@@ -17,21 +17,6 @@ using namespace boxsim;
 
 namespace {
 
-/// The least-squares slope of log(error) on log(dt).
-double fittedSlope(const std::vector<double>& dt, const std::vector<double>& error) {
-  const double n = static_cast<double>(dt.size());
-  double sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0;
-  for (std::size_t i = 0; i < dt.size(); ++i) {
-    const double x = std::log(dt[i]);
-    const double y = std::log(error[i]);
-    sx += x;
-    sy += y;
-    sxx += x * x;
-    sxy += x * y;
-  }
-  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
-}
-
 int stepsOf(const StickingScene& scene, double dt) { return static_cast<int>(std::lround(scene.window / dt)); }
 
 /// The largest |p_b - p_a| over the window for each dt.
@@ -152,7 +137,7 @@ TEST_CASE("Forward Euler separates the contacts at first order in dt; semi-impli
       INFO(stickingMethodName(m));
       // The leading error term is O(dt); the next one's share halves with each halving, and from
       // dt = 1/120 s on the local slopes are within 0.1 of 1.
-      CHECK(fittedSlope(dts, maxErrors(scene, m, dts)) == Approx(1.0).margin(0.1));
+      CHECK(convergenceOrder(dts, maxErrors(scene, m, dts)) == Approx(1.0).margin(0.1));
       const StickingSummary s = runSticking(scene, m, 1.0 / 60.0, stepsOf(scene, 1.0 / 60.0)).summary;
       CHECK(s.maxGap > 1e-4);             // the material points come apart by a tenth of a mm or more
       CHECK(s.minGap > -1e-12);           // and never move into each other (rounding aside)
@@ -165,7 +150,7 @@ TEST_CASE("Runge-Kutta with forces held over the step is still first order", "[e
   const std::vector<double> dts = halvings(1.0 / 120.0);
   for (const StickingScene& scene : allStickingScenes()) {
     INFO(scene.name);
-    CHECK(fittedSlope(dts, maxErrors(scene, StickingMethod::RungeKutta4ConstantForces, dts)) ==
+    CHECK(convergenceOrder(dts, maxErrors(scene, StickingMethod::RungeKutta4ConstantForces, dts)) ==
           Approx(1.0).margin(0.1));
   }
 }
@@ -177,7 +162,7 @@ TEST_CASE("Runge-Kutta with forces re-solved at every stage converges at fourth 
     INFO(scene.name);
     const std::vector<double> errors = maxErrors(scene, StickingMethod::RungeKutta4ResolvedForces, dts);
     // Measured 4.01-4.03; the finest error (~1e-12 m) is still 1e3 above rounding.
-    CHECK(fittedSlope(dts, errors) == Approx(4.0).margin(0.15));
+    CHECK(convergenceOrder(dts, errors) == Approx(4.0).margin(0.15));
     CHECK(errors.front() < 1e-6);  // under a micrometre at the thesis' 1/60 s
   }
 }
@@ -192,7 +177,7 @@ TEST_CASE("The screw update keeps a single hinge on its circle to rounding, but 
   }
   const StickingScene two = twoFrames();
   const std::vector<double> dts = halvings(1.0 / 60.0);
-  CHECK(fittedSlope(dts, maxErrors(two, StickingMethod::ScrewEuler, dts)) == Approx(1.0).margin(0.1));
+  CHECK(convergenceOrder(dts, maxErrors(two, StickingMethod::ScrewEuler, dts)) == Approx(1.0).margin(0.1));
   const StickingSummary s = runSticking(two, StickingMethod::ScrewEuler, 1.0 / 60.0, stepsOf(two, 1.0 / 60.0)).summary;
   CHECK(s.minGap < -1e-3);  // B sinks into A by a millimetre or more
 }

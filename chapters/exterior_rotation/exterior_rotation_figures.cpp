@@ -91,21 +91,6 @@ void writePenetrationVsTime(const std::string& out, const StickingScene& scene, 
   writeFileAtomically(out + "/" + stem + ".dat", text.str());
 }
 
-/// The least-squares slope of log(error) against log(dt).
-double fittedSlope(const std::vector<double>& dt, const std::vector<double>& error) {
-  const int n = static_cast<int>(dt.size());
-  double sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0;
-  for (int i = 0; i < n; ++i) {
-    const double x = std::log(dt[i]);
-    const double y = std::log(error[i]);
-    sx += x;
-    sy += y;
-    sxx += x * x;
-    sxy += x * y;
-  }
-  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
-}
-
 /// s6_2_penetration_vs_dt: the extremes over each scene's window for every dt of the sweep,
 /// one block per (scene, method), scene-major; each block's title row carries the fitted slope.
 void writeSweep(const std::string& out) {
@@ -136,7 +121,7 @@ void writeSweep(const std::string& out) {
       } else if (errors.back() < kRoundingLevel) {
         std::snprintf(title, sizeof title, "%s: rounding (< %.0e m)", methodTitle(m).c_str(), kRoundingLevel);
       } else {
-        std::snprintf(title, sizeof title, "%s: slope %.2f", methodTitle(m).c_str(), fittedSlope(kSweep, errors));
+        std::snprintf(title, sizeof title, "%s: slope %.2f", methodTitle(m).c_str(), convergenceOrder(kSweep, errors));
       }
       text << "# slope " << scene.name << " " << stickingMethodName(m) << ": " << title << "\n";
       text << "\"" << title << "\" 0 0 0 0 0 0\n";

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <gsl/gsl_fit.h>
+
 #include "boxsim/collision/broad_phase.hpp"
 
 namespace boxsim {
@@ -106,6 +108,22 @@ StickingRun runSticking(const StickingScene& scene, StickingMethod method, doubl
     m.maxAbsReferenceEnergyChange = std::max(m.maxAbsReferenceEnergyChange, std::abs(x.referenceEnergyChange));
   }
   return run;
+}
+
+double convergenceOrder(const std::vector<double>& dt, const std::vector<double>& error) {
+  if (dt.size() != error.size() || dt.size() < 2)
+    throw std::invalid_argument("convergenceOrder: needs as many errors as steps, at least two");
+  std::vector<double> x(dt.size()), y(dt.size());
+  for (std::size_t i = 0; i < dt.size(); ++i) {
+    if (!(dt[i] > 0.0) || !(error[i] > 0.0))
+      throw std::invalid_argument("convergenceOrder: steps and errors must be positive numbers");
+    x[i] = std::log(dt[i]);
+    y[i] = std::log(error[i]);
+  }
+  double intercept = 0.0, slope = 0.0, cov00 = 0.0, cov01 = 0.0, cov11 = 0.0, sumsq = 0.0;
+  gsl_fit_linear(x.data(), 1, y.data(), 1, x.size(), &intercept, &slope, &cov00, &cov01, &cov11,
+                 &sumsq);
+  return slope;
 }
 
 }  // namespace boxsim

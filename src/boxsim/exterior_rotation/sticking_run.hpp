@@ -66,4 +66,9 @@ struct StickingRun {
 StickingRun runSticking(const StickingScene& scene, StickingMethod method, double dt, int steps,
                         const std::function<void(const World&, double)>& onStep = {});
 
+/// The order of convergence of an error against the step: the least-squares slope of
+/// log(error) on log(dt) (GSL's gsl_fit_linear). `dt` (s) and `error` have the same size >= 2
+/// and hold positive numbers. \throws std::invalid_argument otherwise.
+double convergenceOrder(const std::vector<double>& dt, const std::vector<double>& error);
+
 }  // namespace boxsim
