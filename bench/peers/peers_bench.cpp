@@ -115,7 +115,9 @@ RunResult runOne(const SceneSpec& spec, PeerEngine& engine) {
   engine.load(scene);
   const long steps = std::lround(spec.duration / kDt);
   const int every = scene.boxes.size() > kLargeScene ? kMeasureEveryLarge : 1;
-  const int die = spec.die ? mirror.movableCount() > 0 ? 1 : -1 : -1;
+  int die = -1;  // the scene's first movable body, when it is the die
+  for (std::size_t i = 0; spec.die && die < 0 && i < mirror.bodies.size(); ++i)
+    if (!mirror.bodies[i].immovable) die = static_cast<int>(i);
   const int top = spec.tower ? static_cast<int>(mirror.bodies.size()) - 1 : -1;
   const Vec3 topStart = top >= 0 ? scene.boxes[static_cast<std::size_t>(top)].x : Vec3::Zero();
 
