@@ -252,4 +252,38 @@ SeparatingAxisResult separatingAxisTest(const Obb& a, const Obb& b,
   return result;
 }
 
+bool separatedBeyond(const Obb& a, const Obb& b, const SeparatingAxisResult& axis, double margin,
+                     const SeparatingAxisParams& params) {
+  const Vec3& ea = a.halfExtents;
+  const Vec3& eb = b.halfExtents;
+  const Vec3 D = b.center - a.center;
+  // C and its rows as separatingAxisTest forms them, entry for entry.
+  const auto absC = [&](int i, int j) { return std::abs(a.axes.col(i).dot(b.axes.col(j))); };
+  double depth = 0.0;
+  if (axis.kind == AxisKind::FaceA) {
+    const int i = axis.indexA;
+    const double rB = eb[0] * absC(i, 0) + eb[1] * absC(i, 1) + eb[2] * absC(i, 2);
+    depth = (ea[i] + rB) - std::abs(a.axes.col(i).dot(D));
+  } else if (axis.kind == AxisKind::FaceB) {
+    const int j = axis.indexB;
+    const double rA = ea[0] * absC(0, j) + ea[1] * absC(1, j) + ea[2] * absC(2, j);
+    depth = (rA + eb[j]) - std::abs(b.axes.col(j).dot(D));
+  } else {
+    const int i = axis.indexA, j = axis.indexB;
+    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+    const auto absCEdge = [&](int r, int c) { return absC(r, c) + params.absCEpsilon; };
+    const Vec3 L = a.axes.col(i).cross(b.axes.col(j));
+    const double rA = ea[i1] * absCEdge(i2, j) + ea[i2] * absCEdge(i1, j);
+    const double rB = eb[j1] * absCEdge(i, j2) + eb[j2] * absCEdge(i, j1);
+    const double length = std::sqrt(L.squaredNorm());
+    // The full test skips such an axis, so it says nothing about the full test's answer.
+    if (!(length >= params.parallelCutoff)) return false;
+    depth = ((rA + rB) - std::abs(L.dot(D))) / length;
+  }
+  const double tieWidth = params.faceTieTolerance * (ea.maxCoeff() + eb.maxCoeff());
+  // Twice the tie width: once for the full test's preference of a tied face or a face over an
+  // edge, once (with the relative term) for the rounding of these few operations.
+  return depth + 2.0 * tieWidth + 1e-15 * std::abs(depth) <= -margin;
+}
+
 }  // namespace boxsim

@@ -52,4 +52,20 @@ struct SeparatingAxisParams {
 SeparatingAxisResult separatingAxisTest(const Obb& a, const Obb& b,
                                         const SeparatingAxisParams& params = {});
 
+/// A one-axis shortcut of separatingAxisTest for a pair tested before (temporal coherence, as
+/// in Gottschalk, Lin and Manocha's OBBTree, 1996, and most engines' cached separating axes):
+/// the depth along the axis `axis` named (its kind, indexA and indexB; typically the answer
+/// of the pair's last test), computed by the same expression as in the full test.
+///
+/// Returns true only when separatingAxisTest(a, b, params).depth <= -margin is certain, so a
+/// caller that treats such a pair as "no contact within margin" gets the full test's answer
+/// bit for bit. Why: the full test's depth exceeds the least depth over its axes by at most
+/// the face tie width w (faceTieTolerance times the sum of the largest half extents), so a
+/// depth d along one tested axis with d + 2 w <= -margin (w again covering rounding) bounds it.
+/// An edge axis too close to parallel to be tested (parallelCutoff) and NaN give false; false
+/// means only "run the full test".
+/// \param margin  m, >= 0
+bool separatedBeyond(const Obb& a, const Obb& b, const SeparatingAxisResult& axis, double margin,
+                     const SeparatingAxisParams& params = {});
+
 }  // namespace boxsim

@@ -88,25 +88,125 @@ bool ContactGathering::cacheCovers(const World& world) const {
   return true;
 }
 
+namespace {
+/// A body's bounds in the step's sweep grow by this many times its reach in a pass, so its
+/// velocity may grow this much under the impulses of the step before the sweep is redone.
+constexpr double kGuardFactor = 2.0;
+/// Relative and absolute slack (m) that a body's reach must stay under its growth by: obbBounds
+/// at two poses round differently, by a few ulp of the coordinates.
+constexpr double kGuardRelativeSlack = 1e-9;
+constexpr double kGuardAbsoluteSlack = 1e-9;
+/// Up to this many bodies outgrowing their growth in a pass are each tested against every
+/// body (O(n) apiece); more, and the whole sweep is redone.
+constexpr std::size_t kMaxDirectlyGrown = 32;
+
+/// Whether every point of `body`, moved by `reach` (m), stays inside its bounds grown by `growth`.
+bool withinGrowth(const RigidBody& body, double reach, double growth) {
+  const double scale = body.s.x.cwiseAbs().maxCoeff() + body.halfExtents.norm();
+  return reach * (1.0 + kGuardRelativeSlack) + kGuardAbsoluteSlack * (1.0 + scale) <= growth;
+}
+}  // namespace
+
+void ContactGathering::sweepCandidates(const World& world, const Vec3& gravityStep, double dt,
+                                       double margin) {
+  const std::size_t n = world.bodies.size();
+  guard_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) guard_[i] = guardOf(world.bodies[i], gravityStep, dt);
+  candidates_.clear();
+  hasCandidate_.assign(n, 0);
+  for (const auto& [i, j] : sweepAndPrunePairs(world, margin, guard_)) {
+    candidates_.push_back(Candidate{i, j, SeparatingAxisResult{}, false});
+    hasCandidate_[i] = hasCandidate_[j] = 1;
+  }
+  guardLo_.resize(n);
+  guardHi_.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    obbBounds(Obb::of(world.bodies[i]), guard_[i], guardLo_[i], guardHi_[i]);
+}
+
+double ContactGathering::guardOf(const RigidBody& body, const Vec3& gravityStep, double dt) const {
+  if (body.immovable) return 0.0;
+  const double scale = body.s.x.cwiseAbs().maxCoeff() + body.halfExtents.norm();
+  // Room for the reach with its slack (withinGrowth), kGuardFactor times over; never less
+  // than the slow widening, whose pairs the candidates must hold as well.
+  return std::max(params_.slowWidening * body.halfExtents.minCoeff(),
+                  kGuardFactor * (reach(body, gravityStep, dt) * (1.0 + kGuardRelativeSlack) +
+                                  kGuardAbsoluteSlack * (1.0 + scale)));
+}
+
+void ContactGathering::growCandidates(const World& world, const Vec3& gravityStep, double dt,
+                                      double margin, const std::vector<int>& outgrown) {
+  const int n = static_cast<int>(world.bodies.size());
+  // Many at once (a clump's first impact): one sweep is cheaper than testing each against all.
+  if (outgrown.size() > kMaxDirectlyGrown) {
+    sweepCandidates(world, gravityStep, dt, margin);
+    return;
+  }
+  std::vector<char> isOutgrown(world.bodies.size(), 0);
+  for (int i : outgrown) {
+    guard_[i] = guardOf(world.bodies[i], gravityStep, dt);
+    obbBounds(Obb::of(world.bodies[i]), guard_[i], guardLo_[i], guardHi_[i]);
+    isOutgrown[i] = 1;
+  }
+  // Each outgrown body against every other, by the sweep's test on the grown bounds (a pair of
+  // two outgrown bodies once, from its lower index).
+  std::vector<std::pair<int, int>> found;
+  for (int i : outgrown)
+    for (int j = 0; j < n; ++j) {
+      if (j == i || (isOutgrown[j] && j < i)) continue;
+      if (world.bodies[i].immovable && world.bodies[j].immovable) continue;
+      if (boundsWithin(guardLo_[i], guardHi_[i], guardLo_[j], guardHi_[j], margin)) {
+        found.emplace_back(std::min(i, j), std::max(i, j));
+        hasCandidate_[i] = hasCandidate_[j] = 1;
+      }
+    }
+  std::sort(found.begin(), found.end());
+  // Merged into the (a, b) order; pairs already listed keep what they remember of their axis.
+  std::vector<Candidate> merged;
+  merged.reserve(candidates_.size() + found.size());
+  std::size_t f = 0;
+  for (const Candidate& c : candidates_) {
+    const std::pair<int, int> key(c.a, c.b);
+    for (; f < found.size() && found[f] < key; ++f)
+      merged.push_back(Candidate{found[f].first, found[f].second, SeparatingAxisResult{}, false});
+    if (f < found.size() && found[f] == key) ++f;
+    merged.push_back(c);
+  }
+  for (; f < found.size(); ++f)
+    merged.push_back(Candidate{found[f].first, found[f].second, SeparatingAxisResult{}, false});
+  candidates_.swap(merged);
+}
+
 void ContactGathering::buildCache(const World& world, const Vec3& gravityStep, double dt,
                                   double margin) {
   const std::size_t n = world.bodies.size();
   std::vector<double> widening(n, 0.0);
   immovable_.assign(n, 0);
   if (fast_.size() != n) fast_.assign(n, 0);
+  lo_.resize(n);
+  hi_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const RigidBody& body = world.bodies[i];
+    obbBounds(Obb::of(body), 0.0, lo_[i], hi_[i]);
     immovable_[i] = static_cast<char>(body.immovable);
     if (body.immovable) continue;
     widening[i] = params_.slowWidening * body.halfExtents.minCoeff();
     if (reach(body, gravityStep, dt) > params_.exactReach * body.halfExtents.minCoeff())
       fast_[i] = 1;
   }
-  // One broad and narrow phase at the current poses, each body widened by more than a slow
-  // body can move (slowWidening >= exactReach).
+  sweepCandidates(world, gravityStep, dt, margin);
+  // One narrow phase at the current poses for the slow pairs, each body widened by more than a
+  // slow body can move (slowWidening >= exactReach): the pairs sweepAndPrunePairs(world,
+  // margin, widening) gives, picked from the candidates (whose growth is at least the
+  // widening) by the sweep's own test.
   pairs_.clear();
-  for (const auto& [i, j] : sweepAndPrunePairs(world, margin, widening)) {
+  for (const Candidate& candidate : candidates_) {
+    const int i = candidate.a, j = candidate.b;
     if (fast_[i] || fast_[j]) continue;  // gathered as written, pass by pass
+    Vec3 loI, hiI, loJ, hiJ;
+    obbBounds(Obb::of(world.bodies[i]), widening[i], loI, hiI);
+    obbBounds(Obb::of(world.bodies[j]), widening[j], loJ, hiJ);
+    if (!boundsWithin(loI, hiI, loJ, hiJ, margin)) continue;
     const double pairMargin = margin + widening[i] + widening[j];
     ContactManifold m = collideBoxes(Obb::of(world.bodies[i]), Obb::of(world.bodies[j]), pairMargin);
     // Closer than the margin along every axis, yet no point: boxes passing corner by corner.
@@ -194,32 +294,64 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
   const std::size_t n = world.bodies.size();
   moved_.assign(n, 0);
   saved_.resize(n);
-  bool anyFast = false;
+  std::vector<int>& fast = fastBodies_;
+  std::vector<int>& outgrown = outgrown_;
+  fast.clear();
+  outgrown.clear();
   for (std::size_t i = 0; i < n; ++i) {
-    RigidBody& body = world.bodies[i];
+    const RigidBody& body = world.bodies[i];
     if (body.immovable) continue;
-    if (!fast_[i] &&
-        reach(body, gravityStep, dt) <= params_.exactReach * body.halfExtents.minCoeff())
+    const double r = reach(body, gravityStep, dt);
+    if (!fast_[i] && r <= params_.exactReach * body.halfExtents.minCoeff()) continue;
+    fast.push_back(static_cast<int>(i));
+    if (!withinGrowth(body, r, guard_[i])) outgrown.push_back(static_cast<int>(i));
+  }
+  // The step's candidates hold every pair that can come near while each body moves less than
+  // its growth; one that outgrew it needs its pairs found afresh, from the poses the bodies
+  // stand at.
+  if (!outgrown.empty()) growCandidates(world, gravityStep, dt, margin, outgrown);
+  predictedLo_.resize(n);
+  predictedHi_.resize(n);
+  bool anyFast = false;
+  for (int i : fast) {
+    RigidBody& body = world.bodies[i];
+    // A fast body with no candidate cannot touch anything in this pass: its predicted pose
+    // would be looked at by no one, so it stays, with the velocities putting it back recomputes.
+    if (!hasCandidate_[i]) {
+      body.updateVelocities();
       continue;
-    saved_[i] = SavedPose{body.s.x, body.s.q, body.R, body.Iinv, false};
+    }
     moved_[i] = 1;
     anyFast = true;
+    saved_[i] = SavedPose{body.s.x, body.s.q, body.R, body.Iinv, false};
     movePredicted(body, dt, gravityStep);
+    obbBounds(Obb::of(body), 0.0, predictedLo_[i], predictedHi_[i]);
   }
   // A.2 L3 for the pairs with a fast body: the broad and narrow phase where the bodies now
-  // stand, as written. Sorted by pair like the cache, so the two lists merge into one order.
-  std::vector<std::pair<int, int>> fastPairs;
+  // stand, as written. The broad phase is sweepAndPrunePairs' own test on the candidates, so
+  // it keeps the pairs a sweep at these poses would find, in the same (a, b) order, which is
+  // the cache's order too, so the two lists merge into one.
+  fastPairs_.clear();
   if (anyFast)
-    for (const std::pair<int, int>& p : sweepAndPrunePairs(world, margin))
-      if (moved_[p.first] || moved_[p.second]) fastPairs.push_back(p);
+    for (std::size_t k = 0; k < candidates_.size(); ++k) {
+      const int a = candidates_[k].a, b = candidates_[k].b;
+      if (!moved_[a] && !moved_[b]) continue;
+      const Vec3& loA = moved_[a] ? predictedLo_[a] : lo_[a];
+      const Vec3& hiA = moved_[a] ? predictedHi_[a] : hi_[a];
+      const Vec3& loB = moved_[b] ? predictedLo_[b] : lo_[b];
+      const Vec3& hiB = moved_[b] ? predictedHi_[b] : hi_[b];
+      if (boundsWithin(loA, hiA, loB, hiB, margin)) fastPairs_.push_back(k);
+    }
   contacts_.clear();
   ImpulseContact c;
   std::size_t f = 0;
+  const auto keyOf = [this](std::size_t k) {
+    return std::pair<int, int>(candidates_[k].a, candidates_[k].b);
+  };
   for (CachedPair& pair : pairs_) {
     const std::pair<int, int> key(pair.contact.a, pair.contact.b);
-    for (; f < fastPairs.size() && fastPairs[f] < key; ++f)
-      if (exactContact(world, fastPairs[f].first, fastPairs[f].second, margin, c))
-        contacts_.push_back(c);
+    for (; f < fastPairs_.size() && keyOf(fastPairs_[f]) < key; ++f)
+      if (candidateContact(world, fastPairs_[f], margin, c)) contacts_.push_back(c);
     // No point to predict from: the narrow phase where the two slow bodies stand.
     // A body that turned fast in this step: its pairs are among the fast ones now, and what
     // they remember of the face comes after anything remembered before.
@@ -237,10 +369,27 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
       contacts_.push_back(c);
     }
   }
-  for (; f < fastPairs.size(); ++f)
-    if (exactContact(world, fastPairs[f].first, fastPairs[f].second, margin, c))
-      contacts_.push_back(c);
+  for (; f < fastPairs_.size(); ++f)
+    if (candidateContact(world, fastPairs_[f], margin, c)) contacts_.push_back(c);
   return contacts_;
+}
+
+bool ContactGathering::candidateContact(const World& world, std::size_t k, double margin,
+                                        ImpulseContact& contact) {
+  Candidate& candidate = candidates_[k];
+  const Obb a = Obb::of(world.bodies[candidate.a]);
+  const Obb b = Obb::of(world.bodies[candidate.b]);
+  // Apart last time, and still apart along the same axis: the full test would say so too.
+  if (candidate.apart && separatedBeyond(a, b, candidate.axis, margin)) return false;
+  const SeparatingAxisResult sat = separatingAxisTest(a, b);
+  ContactManifold m = buildContactManifold(a, b, sat, margin);
+  candidate.axis = sat;
+  candidate.apart = m.count == 0;
+  if (m.count == 0) return false;
+  m.a = candidate.a;
+  m.b = candidate.b;
+  contact = normals_.contactOf(world, m);
+  return true;
 }
 
 void ContactGathering::end(World& world) {

@@ -19,7 +19,18 @@
 ///     default exactReach. A contact joins the pass when one of its points has
 ///     depth' > -margin, the criterion of EveryPass; its point is the mean of those points.
 ///   - Pairs with a fast body: as written. Fast bodies move to their predicted poses and a broad
-///     and narrow phase at those poses finds their contacts, every pass.
+///     and narrow phase at those poses finds their contacts, every pass. The broad phase of a
+///     pass returns what sweepAndPrunePairs would at those poses, found faster: one sweep per
+///     step, with every movable body's bounds grown by more than it can move in a pass
+///     (kGuardFactor times its reach, and at least the slow widening), lists the pairs that
+///     can come near in the step; each pass applies the broad phase's own test (boundsWithin
+///     at the pass' poses) to that list alone. A body whose reach outgrows its growth (an
+///     impulse sped it up) gets a new growth and is tested against every body (or, when
+///     many outgrow theirs at once, the sweep is redone). A fast body in no candidate pair
+///     touches nothing in the step, so it is not moved at all. The narrow phase of a pair that was
+///     apart in its last pass first looks along the axis that separated it (separatedBeyond),
+///     which decides most pairs of a flying clump with one axis instead of fifteen, and
+///     always as the full test would.
 ///
 ///   Contacts of both kinds are ordered by pair, as EveryPass orders them. Speculative contacts
 ///   (Catto, "Speculative Contacts", GDC 2013) make the same first-order prediction. On a
@@ -40,6 +51,7 @@
 #include <vector>
 
 #include "boxsim/collision/contact.hpp"
+#include "boxsim/collision/separating_axis.hpp"
 #include "boxsim/core/world.hpp"
 #include "boxsim/impulse_damped/contact_normal.hpp"
 #include "boxsim/impulse_damped/impulse_params.hpp"
@@ -144,6 +156,28 @@ class ContactGathering {
                         double dt, double margin, ImpulseContact& contact) const;
   /// The narrow phase of bodies i < j where they stand; false when they do not touch.
   bool exactContact(const World& world, int i, int j, double margin, ImpulseContact& contact);
+  /// exactContact for a pair of the step's candidates, trying its last separating axis first
+  /// and remembering the axis of this test.
+  bool candidateContact(const World& world, std::size_t candidate, double margin,
+                        ImpulseContact& contact);
+  /// The step's candidate pairs: one sweep with every movable body's bounds grown by
+  /// guard_ (set here from the current velocities); bodies must stand at their current poses.
+  void sweepCandidates(const World& world, const Vec3& gravityStep, double dt, double margin);
+  /// m: how far body's bounds grow in the sweep, for its current velocities.
+  double guardOf(const RigidBody& body, const Vec3& gravityStep, double dt) const;
+  /// Gives the `outgrown` bodies a growth for their current velocities and adds the
+  /// candidates that brings (bodies at their current poses).
+  void growCandidates(const World& world, const Vec3& gravityStep, double dt, double margin,
+                      const std::vector<int>& outgrown);
+
+  /// A pair that may come within the margin during the step, with the axis that last
+  /// separated it (separatedBeyond), if any.
+  struct Candidate {
+    int a;                      ///< body index, a < b
+    int b;                      ///< body index
+    SeparatingAxisResult axis;  ///< kind and indices of the last test's axis
+    bool apart;                 ///< the last test found no contact within the margin
+  };
 
   ImpulseParams params_;
   ContactNormalTracker normals_;
@@ -156,6 +190,15 @@ class ContactGathering {
   std::vector<char> fast_;        ///< per body: fast when the cache was built, so not in it
   double cacheMargin_ = 0.0;
   long narrowPhases_ = 0;
+  std::vector<Candidate> candidates_;  ///< in increasing (a, b) order
+  std::vector<double> guard_;          ///< m, per body: growth of its bounds in the sweep
+  std::vector<Vec3> lo_, hi_;          ///< bounds at the current poses (obbBounds, margin 0)
+  std::vector<Vec3> guardLo_, guardHi_;  ///< bounds at the current poses grown by guard_
+  std::vector<int> outgrown_;          ///< this pass: fast bodies whose reach outgrew guard_
+  std::vector<int> fastBodies_;        ///< this pass: bodies fast now or at the cache's build
+  std::vector<char> hasCandidate_;     ///< per body: in at least one candidate pair
+  std::vector<Vec3> predictedLo_, predictedHi_;  ///< bounds of the moved bodies in this pass
+  std::vector<std::size_t> fastPairs_;  ///< this pass: candidates whose bounds come near
 };
 
 }  // namespace boxsim
