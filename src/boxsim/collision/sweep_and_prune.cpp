@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <stdexcept>
 
 #include "boxsim/collision/broad_phase.hpp"
 
@@ -202,38 +203,49 @@ bool buildGrid(const std::vector<Vec3>& lo, const std::vector<Vec3>& hi,
   return true;
 }
 
-/// The pairs of gridded bodies: each cell against itself and its 13 neighbours that follow it
-/// (dz > 0, or dz = 0 and dy > 0, or dz = dy = 0 and dx > 0), so each pair of cells is visited
-/// once.
+/// The pairs of gridded bodies: each occupied cell against itself and its 13 neighbours that
+/// follow it (dz > 0, or dz = 0 and dy > 0, or dz = dy = 0 and dx > 0), so each pair of cells
+/// is visited once. The bounds are copied into cell order first, so the scans read memory in
+/// sequence; only the occupied cells are visited.
 void gridPairs(const World& world, const std::vector<Vec3>& lo, const std::vector<Vec3>& hi,
                const Grid& grid, double margin, std::vector<std::pair<int, int>>& pairs) {
-  const auto test = [&](int a, int b) {
-    if (world.bodies[a].immovable && world.bodies[b].immovable) return;
-    if (boundsWithin(lo[a], hi[a], lo[b], hi[b], margin))
+  const std::size_t m = grid.order.size();
+  std::vector<Vec3> sortedLo(m), sortedHi(m);
+  std::vector<char> sortedImmovable(m);
+  for (std::size_t p = 0; p < m; ++p) {
+    const int body = grid.order[p];
+    sortedLo[p] = lo[body];
+    sortedHi[p] = hi[body];
+    sortedImmovable[p] = static_cast<char>(world.bodies[body].immovable);
+  }
+  const auto test = [&](int p, int q) {
+    if (sortedImmovable[p] && sortedImmovable[q]) return;
+    if (boundsWithin(sortedLo[p], sortedHi[p], sortedLo[q], sortedHi[q], margin)) {
+      const int a = grid.order[p], b = grid.order[q];
       pairs.emplace_back(std::min(a, b), std::max(a, b));
+    }
   };
   const Eigen::Vector3i& d = grid.dims;
-  for (int z = 0; z < d.z(); ++z)
-    for (int y = 0; y < d.y(); ++y)
-      for (int x = 0; x < d.x(); ++x) {
-        const int c = (z * d.y() + y) * d.x() + x;
-        const int begin = grid.start[c], end = grid.start[c + 1];
-        if (begin == end) continue;
-        for (int p = begin; p < end; ++p)
-          for (int q = p + 1; q < end; ++q) test(grid.order[p], grid.order[q]);
-        for (int dz = 0; dz <= 1; ++dz)
-          for (int dy = dz == 0 ? 0 : -1; dy <= 1; ++dy)
-            for (int dx = (dz == 0 && dy == 0) ? 1 : -1; dx <= 1; ++dx) {
-              const int nx = x + dx, ny = y + dy, nz = z + dz;
-              if (nx < 0 || ny < 0 || nx >= d.x() || ny >= d.y() || nz >= d.z()) continue;
-              const int o = (nz * d.y() + ny) * d.x() + nx;
-              for (int p = begin; p < end; ++p)
-                for (int q = grid.start[o]; q < grid.start[o + 1]; ++q)
-                  test(grid.order[p], grid.order[q]);
-            }
-      }
+  int c = 0;  // the cell of the run below; cells come in increasing order
+  for (int begin = 0; begin < static_cast<int>(m);) {
+    // The run of bodies in one cell: order[begin, end).
+    while (grid.start[c + 1] <= begin) ++c;
+    const int end = grid.start[c + 1];
+    const int x = c % d.x(), y = (c / d.x()) % d.y(), z = c / (d.x() * d.y());
+    for (int p = begin; p < end; ++p)
+      for (int q = p + 1; q < end; ++q) test(p, q);
+    for (int dz = 0; dz <= 1; ++dz)
+      for (int dy = dz == 0 ? 0 : -1; dy <= 1; ++dy)
+        for (int dx = (dz == 0 && dy == 0) ? 1 : -1; dx <= 1; ++dx) {
+          const int nx = x + dx, ny = y + dy, nz = z + dz;
+          if (nx < 0 || ny < 0 || nx >= d.x() || ny >= d.y() || nz >= d.z()) continue;
+          const int o = (nz * d.y() + ny) * d.x() + nx;
+          for (int q = grid.start[o]; q < grid.start[o + 1]; ++q)
+            for (int p = begin; p < end; ++p) test(p, q);
+        }
+    begin = end;
+  }
 }
-
 }  // namespace
 
 std::vector<std::pair<int, int>> sweepAndPrunePairs(const World& world, double margin,
@@ -242,6 +254,15 @@ std::vector<std::pair<int, int>> sweepAndPrunePairs(const World& world, double m
   std::vector<Vec3> lo(n), hi(n);
   for (int i = 0; i < n; ++i)
     obbBounds(Obb::of(world.bodies[i]), growth.empty() ? 0.0 : growth[i], lo[i], hi[i]);
+  return sweepAndPrunePairs(world, lo, hi, margin);
+}
+
+std::vector<std::pair<int, int>> sweepAndPrunePairs(const World& world,
+                                                    const std::vector<Vec3>& lo,
+                                                    const std::vector<Vec3>& hi, double margin) {
+  const int n = static_cast<int>(world.bodies.size());
+  if (lo.size() != world.bodies.size() || hi.size() != world.bodies.size())
+    throw std::invalid_argument("sweepAndPrunePairs: give one pair of bounds per body");
 
   // A ground as wide as the scene, swept, would overlap every interval along the sweep axis and
   // make the sweep quadratic: immovable bodies much larger than every movable one are tested

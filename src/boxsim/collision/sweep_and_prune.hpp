@@ -51,4 +51,14 @@ namespace boxsim {
 std::vector<std::pair<int, int>> sweepAndPrunePairs(const World& world, double margin = 0.0,
                                                     const std::vector<double>& growth = {});
 
+/// sweepAndPrunePairs with the bounds given: body i's world axis-aligned bounds are
+/// [lo[i], hi[i]] (m), whatever they enclose (a body swept along its motion, say). The same
+/// pairs as the all-pairs loop with boundsWithin(lo[i], hi[i], lo[j], hi[j], margin), not both
+/// immovable, in increasing (i, j) order. Which bodies are swept, gridded or tested directly
+/// is decided as above, from these bounds and the bodies' half extents.
+/// \throws std::invalid_argument unless lo and hi hold one entry per body
+std::vector<std::pair<int, int>> sweepAndPrunePairs(const World& world,
+                                                    const std::vector<Vec3>& lo,
+                                                    const std::vector<Vec3>& hi, double margin);
+
 }  // namespace boxsim

@@ -89,49 +89,63 @@ bool ContactGathering::cacheCovers(const World& world) const {
 }
 
 namespace {
-/// A body's bounds in the step's sweep grow by this many times its reach in a pass, so its
-/// velocity may grow this much under the impulses of the step before the sweep is redone.
+/// A body's bounds in the step's sweep are stretched this many times its displacement in a
+/// pass along that displacement, so its velocity may grow this much along its way under the
+/// impulses of the step before its pairs are looked for again.
 constexpr double kGuardFactor = 2.0;
-/// Relative and absolute slack (m) that a body's reach must stay under its growth by: obbBounds
-/// at two poses round differently, by a few ulp of the coordinates.
-constexpr double kGuardRelativeSlack = 1e-9;
-constexpr double kGuardAbsoluteSlack = 1e-9;
-/// Up to this many bodies outgrowing their growth in a pass are each tested against every
+/// ... and grown on every side by this fraction of that displacement (and kGuardFactor times
+/// what its spin can move a corner), for a velocity that turns.
+constexpr double kGuardSideways = 0.5;
+/// Relative slack for rounding (obbBounds at two poses round differently, by a few ulp of the
+/// coordinates), times the size of the coordinates plus one metre.
+constexpr double kGuardRoundingSlack = 1e-9;
+/// Up to this many bodies outgrowing their bounds in a pass are each tested against every
 /// body (O(n) apiece); more, and the whole sweep is redone.
 constexpr std::size_t kMaxDirectlyGrown = 32;
-
-/// Whether every point of `body`, moved by `reach` (m), stays inside its bounds grown by `growth`.
-bool withinGrowth(const RigidBody& body, double reach, double growth) {
-  const double scale = body.s.x.cwiseAbs().maxCoeff() + body.halfExtents.norm();
-  return reach * (1.0 + kGuardRelativeSlack) + kGuardAbsoluteSlack * (1.0 + scale) <= growth;
-}
 }  // namespace
+
+void ContactGathering::setGuard(const World& world, int i, const Vec3& gravityStep, double dt) {
+  const RigidBody& body = world.bodies[i];
+  const Obb box = Obb::of(body);
+  obbBounds(box, 0.0, guardLo_[i], guardHi_[i]);
+  if (body.immovable) return;
+  const Vec3 shift = (kGuardFactor * dt) * (body.v + gravityStep);
+  const double spin = kGuardFactor * dt * body.omega.norm() * halfDiagonal_[i];
+  const double sideways = kGuardSideways * shift.norm() / kGuardFactor + spin;
+  guardLo_[i] = guardLo_[i].cwiseMin(guardLo_[i] + shift) - Vec3::Constant(sideways);
+  guardHi_[i] = guardHi_[i].cwiseMax(guardHi_[i] + shift) + Vec3::Constant(sideways);
+  // The slow pairs come from these bounds too: they must hold the slow widening's, bit for bit.
+  Vec3 slowLo, slowHi;
+  obbBounds(box, params_.slowWidening * body.halfExtents.minCoeff(), slowLo, slowHi);
+  guardLo_[i] = guardLo_[i].cwiseMin(slowLo);
+  guardHi_[i] = guardHi_[i].cwiseMax(slowHi);
+}
+
+bool ContactGathering::withinGuard(const RigidBody& body, int i, const Vec3& displacement,
+                                   double turn) const {
+  // At the predicted pose the bounds are the current ones moved by the displacement and, as a
+  // corner moves at most |ω| Δt ρ when the body turns, grown by at most that, up to rounding.
+  const double slack =
+      turn + kGuardRoundingSlack * (1.0 + body.s.x.cwiseAbs().maxCoeff() + halfDiagonal_[i]);
+  for (int k = 0; k < 3; ++k)
+    if (!(lo_[i][k] + displacement[k] - slack >= guardLo_[i][k] &&
+          hi_[i][k] + displacement[k] + slack <= guardHi_[i][k]))
+      return false;
+  return true;
+}
 
 void ContactGathering::sweepCandidates(const World& world, const Vec3& gravityStep, double dt,
                                        double margin) {
   const std::size_t n = world.bodies.size();
-  guard_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) guard_[i] = guardOf(world.bodies[i], gravityStep, dt);
+  guardLo_.resize(n);
+  guardHi_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) setGuard(world, static_cast<int>(i), gravityStep, dt);
   candidates_.clear();
   hasCandidate_.assign(n, 0);
-  for (const auto& [i, j] : sweepAndPrunePairs(world, margin, guard_)) {
+  for (const auto& [i, j] : sweepAndPrunePairs(world, guardLo_, guardHi_, margin)) {
     candidates_.push_back(Candidate{i, j, SeparatingAxisResult{}, false});
     hasCandidate_[i] = hasCandidate_[j] = 1;
   }
-  guardLo_.resize(n);
-  guardHi_.resize(n);
-  for (std::size_t i = 0; i < n; ++i)
-    obbBounds(Obb::of(world.bodies[i]), guard_[i], guardLo_[i], guardHi_[i]);
-}
-
-double ContactGathering::guardOf(const RigidBody& body, const Vec3& gravityStep, double dt) const {
-  if (body.immovable) return 0.0;
-  const double scale = body.s.x.cwiseAbs().maxCoeff() + body.halfExtents.norm();
-  // Room for the reach with its slack (withinGrowth), kGuardFactor times over; never less
-  // than the slow widening, whose pairs the candidates must hold as well.
-  return std::max(params_.slowWidening * body.halfExtents.minCoeff(),
-                  kGuardFactor * (reach(body, gravityStep, dt) * (1.0 + kGuardRelativeSlack) +
-                                  kGuardAbsoluteSlack * (1.0 + scale)));
 }
 
 void ContactGathering::growCandidates(const World& world, const Vec3& gravityStep, double dt,
@@ -144,11 +158,10 @@ void ContactGathering::growCandidates(const World& world, const Vec3& gravitySte
   }
   std::vector<char> isOutgrown(world.bodies.size(), 0);
   for (int i : outgrown) {
-    guard_[i] = guardOf(world.bodies[i], gravityStep, dt);
-    obbBounds(Obb::of(world.bodies[i]), guard_[i], guardLo_[i], guardHi_[i]);
+    setGuard(world, i, gravityStep, dt);
     isOutgrown[i] = 1;
   }
-  // Each outgrown body against every other, by the sweep's test on the grown bounds (a pair of
+  // Each outgrown body against every other, by the sweep's test on the new bounds (a pair of
   // two outgrown bodies once, from its lower index).
   std::vector<std::pair<int, int>> found;
   for (int i : outgrown)
@@ -185,10 +198,14 @@ void ContactGathering::buildCache(const World& world, const Vec3& gravityStep, d
   if (fast_.size() != n) fast_.assign(n, 0);
   lo_.resize(n);
   hi_.resize(n);
+  halfDiagonal_.resize(n);
+  slowReach_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const RigidBody& body = world.bodies[i];
     obbBounds(Obb::of(body), 0.0, lo_[i], hi_[i]);
     immovable_[i] = static_cast<char>(body.immovable);
+    halfDiagonal_[i] = body.halfExtents.norm();
+    slowReach_[i] = params_.exactReach * body.halfExtents.minCoeff();
     if (body.immovable) continue;
     widening[i] = params_.slowWidening * body.halfExtents.minCoeff();
     if (reach(body, gravityStep, dt) > params_.exactReach * body.halfExtents.minCoeff())
@@ -301,10 +318,14 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
   for (std::size_t i = 0; i < n; ++i) {
     const RigidBody& body = world.bodies[i];
     if (body.immovable) continue;
-    const double r = reach(body, gravityStep, dt);
-    if (!fast_[i] && r <= params_.exactReach * body.halfExtents.minCoeff()) continue;
+    // reach(), with the half diagonal and the bar of the slow bodies kept since the build.
+    const Vec3 u = body.v + gravityStep;
+    const double turn = dt * body.omega.norm() * halfDiagonal_[i];
+    const double r = dt * (u.norm() + body.omega.norm() * halfDiagonal_[i]);
+    if (!fast_[i] && r <= slowReach_[i]) continue;
     fast.push_back(static_cast<int>(i));
-    if (!withinGrowth(body, r, guard_[i])) outgrown.push_back(static_cast<int>(i));
+    if (!withinGuard(body, static_cast<int>(i), Vec3(dt * u), turn))
+      outgrown.push_back(static_cast<int>(i));
   }
   // The step's candidates hold every pair that can come near while each body moves less than
   // its growth; one that outgrew it needs its pairs found afresh, from the poses the bodies

@@ -21,12 +21,12 @@
 ///   - Pairs with a fast body: as written. Fast bodies move to their predicted poses and a broad
 ///     and narrow phase at those poses finds their contacts, every pass. The broad phase of a
 ///     pass returns what sweepAndPrunePairs would at those poses, found faster: one sweep per
-///     step, with every movable body's bounds grown by more than it can move in a pass
-///     (kGuardFactor times its reach, and at least the slow widening), lists the pairs that
-///     can come near in the step; each pass applies the broad phase's own test (boundsWithin
-///     at the pass' poses) to that list alone. A body whose reach outgrows its growth (an
-///     impulse sped it up) gets a new growth and is tested against every body (or, when
-///     many outgrow theirs at once, the sweep is redone). A fast body in no candidate pair
+///     step, with every movable body's bounds stretched along its way in a pass (kGuardFactor
+///     times it, grown sideways a little, and at least by the slow widening), lists the pairs
+///     that can come near in the step; each pass applies the broad phase's own test
+///     (boundsWithin at the pass' poses) to that list alone. A body whose predicted bounds
+///     would leave its stretched ones (an impulse turned or sped it up) gets new ones and is
+///     tested against every body (or, when many leave theirs at once, the sweep is redone). A fast body in no candidate pair
 ///     touches nothing in the step, so it is not moved at all. The narrow phase of a pair that was
 ///     apart in its last pass first looks along the axis that separated it (separatedBeyond),
 ///     which decides most pairs of a flying clump with one axis instead of fifteen, and
@@ -160,12 +160,17 @@ class ContactGathering {
   /// and remembering the axis of this test.
   bool candidateContact(const World& world, std::size_t candidate, double margin,
                         ImpulseContact& contact);
-  /// The step's candidate pairs: one sweep with every movable body's bounds grown by
-  /// guard_ (set here from the current velocities); bodies must stand at their current poses.
+  /// The step's candidate pairs: one sweep over every body's bounds from setGuard; bodies
+  /// must stand at their current poses.
   void sweepCandidates(const World& world, const Vec3& gravityStep, double dt, double margin);
-  /// m: how far body's bounds grow in the sweep, for its current velocities.
-  double guardOf(const RigidBody& body, const Vec3& gravityStep, double dt) const;
-  /// Gives the `outgrown` bodies a growth for their current velocities and adds the
+  /// Sets body i's bounds for the step's sweep from its current pose and velocities: its
+  /// bounds stretched along kGuardFactor times its displacement in a pass and grown sideways,
+  /// holding its bounds grown by the slow widening.
+  void setGuard(const World& world, int i, const Vec3& gravityStep, double dt);
+  /// Whether body i, moved by `displacement` (m) and turned so that no corner moves more than
+  /// `turn` (m), stays inside its bounds for the sweep.
+  bool withinGuard(const RigidBody& body, int i, const Vec3& displacement, double turn) const;
+  /// Gives the `outgrown` bodies bounds for their current velocities and adds the
   /// candidates that brings (bodies at their current poses).
   void growCandidates(const World& world, const Vec3& gravityStep, double dt, double margin,
                       const std::vector<int>& outgrown);
@@ -191,10 +196,11 @@ class ContactGathering {
   double cacheMargin_ = 0.0;
   long narrowPhases_ = 0;
   std::vector<Candidate> candidates_;  ///< in increasing (a, b) order
-  std::vector<double> guard_;          ///< m, per body: growth of its bounds in the sweep
+  std::vector<double> halfDiagonal_;   ///< m, per body: |h|, the ρ of reach()
+  std::vector<double> slowReach_;      ///< m, per body: exactReach ℓ, the slow bodies' bar
   std::vector<Vec3> lo_, hi_;          ///< bounds at the current poses (obbBounds, margin 0)
-  std::vector<Vec3> guardLo_, guardHi_;  ///< bounds at the current poses grown by guard_
-  std::vector<int> outgrown_;          ///< this pass: fast bodies whose reach outgrew guard_
+  std::vector<Vec3> guardLo_, guardHi_;  ///< bounds in the step's sweep (setGuard)
+  std::vector<int> outgrown_;          ///< this pass: fast bodies that outgrew their bounds
   std::vector<int> fastBodies_;        ///< this pass: bodies fast now or at the cache's build
   std::vector<char> hasCandidate_;     ///< per body: in at least one candidate pair
   std::vector<Vec3> predictedLo_, predictedHi_;  ///< bounds of the moved bodies in this pass
