@@ -1,0 +1,34 @@
+# Side by side with Bullet and ODE: ms per step against the number of unit cubes in the clump
+# of Fig. 6.7 (cubes flying towards its centre, falling onto the ground), log-log, for boxsim's
+# damped integration and every peer engine the harness was built with. Solid: the median
+# step; dashed: the 95th percentile. The grey dashed guide grows as n from the damped median
+# at 100 cubes; the dotted line is real time at 60 Hz (16.7 ms).
+# Data: s7_peers_scaling.dat (rows: boxes "engine" median_ms p95_ms).
+# Usage: gnuplot -e "datadir='...'; outdir='...'" s7_peers_scaling.gp
+data = datadir.'/s7_peers_scaling.dat'
+seconds = system("sed -n 's/.*over the first \\([0-9.]*\\) s.*/\\1/p' ".data)
+engines = system("grep -v '^#' ".data." | sed 's/^[0-9]* \"\\([^\"]*\\)\".*/\\1/' | awk '!seen[$0]++' | tr ' ' '_' | tr '\\n' ' '")
+stats data using 1:(strcol(2) eq "boxsim damped" ? $3 : NaN) nooutput name "D"
+colour(i) = word("#d62728 #1f77b4 #2ca02c #ff7f0e", i)
+label(e) = system("echo '".e."' | tr '_' ' '")
+# One engine's rows alone, so its points join into one line.
+rows(e) = "< grep -F '\"".label(e)."\"' ".data
+do for [kind in "png svg"] {
+  if (kind eq "png") { set terminal pngcairo size 900,560 enhanced font "DejaVu Sans,11" }
+  else { set terminal svg size 900,560 enhanced font "DejaVu Sans,11" }
+  set output outdir.'/s7_peers_scaling.'.kind
+  set title sprintf("Clump of n unit cubes, Δt = 1/60 s, one thread: ms per step over its first %s s", seconds)
+  set grid
+  set logscale xy
+  set xrange [80:12500]
+  set xlabel "cubes n"
+  set ylabel "ms per step (this machine)"
+  set key top left
+  plot D_min_y * (x / D_min_x) with lines dt 2 lc rgb "#aaaaaa" title "∝ n", \
+       16.7 with lines dt 3 lc rgb "#555555" title "60 Hz", \
+       for [i = 1:words(engines)] rows(word(engines, i)) using 1:3 \
+         with linespoints lw 2 pt 7 lc rgb colour(i) title label(word(engines, i)).", median", \
+       for [i = 1:words(engines)] rows(word(engines, i)) using 1:4 \
+         with linespoints lw 1 dt 2 pt 6 lc rgb colour(i) title label(word(engines, i)).", 95th percentile"
+  set output
+}
