@@ -20,6 +20,8 @@
 #include <vector>
 
 #include "boxsim/collision/broad_phase.hpp"
+#include "boxsim/collision/contact_manifold.hpp"
+#include "boxsim/collision/separating_axis.hpp"
 #include "boxsim/collision/sweep_and_prune.hpp"
 #include "boxsim/io/scene_builders.hpp"
 
@@ -190,6 +192,97 @@ TEST_CASE("findContacts and firstIntersectingPair give identical results with bo
         firstIntersectingPair(clump, 0.0, BroadPhase::AllPairs));
   // The defaults are sweep and prune.
   CHECK(sameContacts(findContacts(clump), reference));
+}
+
+TEST_CASE("refindContacts after some bodies moved equals findContacts, manifold for manifold",
+          "[collision][broad_phase]") {
+  testing::SeededRandom random(2024);
+  int movedPairs = 0;
+  for (int scene = 0; scene < 40; ++scene) {
+    World world = randomScene(random, scene % 3 == 0, scene % 2 == 0);
+    const double margin = scene % 4 == 0 ? 0.0 : 0.05;
+    const std::vector<ContactManifold> before = findContacts(world, margin);
+    // Nudge a random fifth of the bodies by up to half a metre, as FIXCONTACTCONSTRAINTS
+    // moves x alone (some move into contact, some out of it).
+    std::vector<char> moved(world.bodies.size(), 0);
+    for (std::size_t i = 0; i < world.bodies.size(); ++i) {
+      if (world.bodies[i].immovable || random.uniform(0, 1) > 0.2) continue;
+      world.bodies[i].s.x += random.vector(-0.5, 0.5);
+      moved[i] = 1;
+    }
+    const std::vector<ContactManifold> reference = findContacts(world, margin);
+    INFO("scene " << scene << ", margin " << margin);
+    CHECK(sameContacts(refindContacts(world, margin, before, moved), reference));
+    for (const ContactManifold& m : reference) movedPairs += (moved[m.a] || moved[m.b]) ? 1 : 0;
+  }
+  CHECK(movedPairs > 100);  // the merge was exercised, not only the kept pairs
+  World world = randomScene(random, false, true);
+  CHECK_THROWS_AS(refindContacts(world, 0.0, {}, std::vector<char>(1, 0)), std::invalid_argument);
+}
+
+TEST_CASE("Sweep and prune over given bounds equals the all-pairs test on those bounds",
+          "[collision][broad_phase]") {
+  testing::SeededRandom random(77);
+  for (int scene = 0; scene < 60; ++scene) {
+    const World world = randomScene(random, scene % 3 == 0, scene % 2 == 0);
+    const std::size_t n = world.bodies.size();
+    // Bounds stretched along a random direction, as contact gathering stretches a body's
+    // bounds along its way in a pass.
+    std::vector<Vec3> lo(n), hi(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      obbBounds(Obb::of(world.bodies[i]), 0.0, lo[i], hi[i]);
+      const Vec3 shift = random.vector(-2.0, 2.0);
+      lo[i] = lo[i].cwiseMin(lo[i] + shift);
+      hi[i] = hi[i].cwiseMax(hi[i] + shift);
+    }
+    Pairs reference;
+    for (int i = 0; i < static_cast<int>(n); ++i)
+      for (int j = i + 1; j < static_cast<int>(n); ++j)
+        if (!(world.bodies[i].immovable && world.bodies[j].immovable) &&
+            boundsWithin(lo[i], hi[i], lo[j], hi[j], 0.01))
+          reference.emplace_back(i, j);
+    INFO("scene " << scene);
+    CHECK(sweepAndPrunePairs(world, lo, hi, 0.01) == reference);
+  }
+  const World world = randomScene(random, false, false);
+  CHECK_THROWS_AS(sweepAndPrunePairs(world, std::vector<Vec3>(1), std::vector<Vec3>(1), 0.0),
+                  std::invalid_argument);
+}
+
+TEST_CASE("separatedBeyond says 'apart' only when the full separating-axis test does",
+          "[collision][sat]") {
+  // Random box pairs near each other; the axis tried is the full test's own answer for the
+  // pair moved by up to 2 cm along each axis (what contact gathering remembers from its last
+  // pass). Whenever the shortcut says the pair is apart beyond the margin, the full test must
+  // agree. And it must decide every pair apart by 10 cm more than the margin: the move changes
+  // the gap along any axis by at most 2 cm times the square root of 3 (3.5 cm), so along the
+  // remembered axis such a pair is still apart by more than the margin plus 3 cm.
+  testing::SeededRandom random(4242);
+  int apart = 0, decided = 0, shortcut = 0;
+  for (int k = 0; k < 20000; ++k) {
+    Obb a{random.vector(-1.0, 1.0), Mat3(random.rotation().toRotationMatrix()), random.vector(0.05, 1.0)};
+    Obb b{random.vector(-1.5, 1.5), Mat3(random.rotation().toRotationMatrix()), random.vector(0.05, 1.0)};
+    const double margin = random.uniform(0.0, 0.05);
+    Obb earlier = b;
+    earlier.center += random.vector(-0.02, 0.02);
+    const SeparatingAxisResult axis = separatingAxisTest(a, earlier);
+    const SeparatingAxisResult full = separatingAxisTest(a, b);
+    const bool fullApart = buildContactManifold(a, b, full, margin).count == 0;
+    const bool said = separatedBeyond(a, b, axis, margin);
+    if (said) {
+      ++shortcut;
+      INFO("pair " << k);
+      REQUIRE(full.depth <= -margin);
+      REQUIRE(fullApart);
+    }
+    if (full.depth < -margin - 0.1) {
+      ++apart;
+      decided += said ? 1 : 0;
+    }
+  }
+  CHECK(apart > 1000);
+  CHECK(decided == apart);
+  CHECK(shortcut > apart);
 }
 
 TEST_CASE("Sweep and prune matches all pairs when a body's state is not finite",

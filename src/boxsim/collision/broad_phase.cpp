@@ -90,6 +90,32 @@ std::pair<int, int> firstIntersectingPair(const World& world, double tolerance,
   return {-1, -1};
 }
 
+std::vector<ContactManifold> refindContacts(const World& world, double margin,
+                                            const std::vector<ContactManifold>& before,
+                                            const std::vector<char>& moved) {
+  if (moved.size() != world.bodies.size())
+    throw std::invalid_argument("refindContacts: give one moved flag per body");
+  std::vector<ContactManifold> contacts;
+  contacts.reserve(before.size());
+  std::size_t k = 0;
+  // Both lists in increasing (a, b) order: merge the kept manifolds with the new ones.
+  const auto keepBefore = [&](const std::pair<int, int>& until) {
+    for (; k < before.size() && std::make_pair(before[k].a, before[k].b) < until; ++k)
+      if (!moved[before[k].a] && !moved[before[k].b]) contacts.push_back(before[k]);
+  };
+  for (const auto& [i, j] : candidatePairs(world, margin)) {
+    if (!moved[i] && !moved[j]) continue;
+    keepBefore({i, j});
+    ContactManifold m = collideBoxes(Obb::of(world.bodies[i]), Obb::of(world.bodies[j]), margin);
+    if (m.count == 0) continue;
+    m.a = i;
+    m.b = j;
+    contacts.push_back(m);
+  }
+  keepBefore({static_cast<int>(world.bodies.size()), 0});
+  return contacts;
+}
+
 double deepestPenetration(const World& world) {
   double deepest = 0.0;
   for (const std::pair<int, int>& p : candidatePairs(world))

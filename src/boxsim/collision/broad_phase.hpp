@@ -61,6 +61,18 @@ std::vector<std::pair<int, int>> candidatePairs(const World& world, double margi
 std::vector<ContactManifold> findContacts(const World& world, double margin = 0.0,
                                           BroadPhase kind = BroadPhase::SweepAndPrune);
 
+/// findContacts(world, margin) after only some bodies moved: `before` is what findContacts
+/// returned with the same margin when every body stood where it stands now except those with
+/// moved[i] != 0. The pairs of two bodies that did not move keep their manifolds (the same
+/// poses give the same manifold, bit for bit); the broad and narrow phase run again for the
+/// pairs with a moved body. The same list as findContacts(world, margin), element for element,
+/// for the cost of a broad phase and the narrow phases of the moved bodies' pairs.
+/// \param moved  one entry per body
+/// \throws std::invalid_argument unless moved has one entry per body
+std::vector<ContactManifold> refindContacts(const World& world, double margin,
+                                            const std::vector<ContactManifold>& before,
+                                            const std::vector<char>& moved);
+
 /// The deepest overlap of any pair of bodies (separating-axis depth), m; 0 when none overlaps.
 /// A measure for tests and figures (how far a technique lets boxes interpenetrate).
 double deepestPenetration(const World& world);
