@@ -95,13 +95,13 @@ namespace {
 constexpr double kGuardFactor = 2.0;
 /// ... and grown on every side by this fraction of that displacement (and kGuardFactor times
 /// what its spin can move a corner), for a velocity that turns.
-constexpr double kGuardSideways = 0.5;
+constexpr double kGuardSideways = 1.0;
 /// Relative slack for rounding (obbBounds at two poses round differently, by a few ulp of the
 /// coordinates), times the size of the coordinates plus one metre.
 constexpr double kGuardRoundingSlack = 1e-9;
 /// Up to this many bodies outgrowing their bounds in a pass are each tested against every
 /// body (O(n) apiece); more, and the whole sweep is redone.
-constexpr std::size_t kMaxDirectlyGrown = 32;
+constexpr std::size_t kMaxDirectlyGrown = 128;
 }  // namespace
 
 void ContactGathering::setGuard(const World& world, int i, const Vec3& gravityStep, double dt) {
