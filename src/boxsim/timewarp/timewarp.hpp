@@ -45,8 +45,10 @@ struct TimewarpParams {
   /// m, >= 0: findNearObjects of SAFERSYNCTIMEWARP takes every body whose test-state bounds,
   /// widened by this, overlap the colliding pair's. 0.5 m, half a unit box.
   double nearMargin = 0.5;
-  /// Collisions one frame may resolve; past it the rest of the frame's collisions are dropped
-  /// and StepStats::limitReached is set (as BasicCollidingParams::maxEventsPerStep).
+  /// Collisions one frame may resolve; past it the rest of the frame is dropped, every body
+  /// stopping at the last instant found apart before the earliest collision left (or at its
+  /// valid time, if later), and StepStats::limitReached is set (as
+  /// BasicCollidingParams::maxEventsPerStep).
   int maxEventsPerStep = 1000;
   /// Integration between collisions (semi-implicit Euler, as the basic technique).
   Integrator integrator = Integrator::SemiImplicitEuler;

@@ -1,0 +1,170 @@
+// Randomized stress: every technique of `boxsim run --method` on random scenes
+// (random_scenes.hpp: sizes 0.05-5 m, masses up to 1000:1, speeds up to 50 m/s with spins,
+// piles, boxes at rest, Δt from 1e-4 s to 1/10 s), every step checked for finite states,
+// bodies sinking through the ground and (damped integration) energy rising beyond what the
+// scheme's derived sources can add; runStressChecks states each tolerance. The long run of the
+// same checks over thousands of seeds is bench/stress_bench.cpp. Then regression tests for what
+// the long run found.
+#include <catch2/catch.hpp>
+
+#include <memory>
+#include <string>
+
+#include "boxsim/collision/broad_phase.hpp"
+#include "boxsim/impulse_damped/damped_integration.hpp"
+#include "boxsim/io/scene_builders.hpp"
+#include "boxsim/techniques.hpp"
+#include "boxsim/timewarp/timewarp.hpp"
+#include "random_scenes.hpp"
+#include "test_worlds.hpp"
+
+using namespace boxsim;
+using namespace boxsim::testing;
+
+namespace {
+
+/// Runs `method` on the scenes of seeds 1..count and requires every check to hold on each.
+void stressSeeds(const std::string& method, unsigned long count) {
+  const RandomSceneSpec spec = affordableSpec(method);
+  long steps = 0;
+  for (unsigned long seed = 1; seed <= count; ++seed) {
+    const RandomScene scene = randomScene(seed, spec);
+    const std::unique_ptr<Stepper> stepper = makeStepper(method);
+    const StressOutcome outcome = runStressChecks(scene, *stepper);
+    INFO(method << ", " << scene.describe());
+    REQUIRE(outcome.failure == "");
+    REQUIRE(outcome.steps == scene.steps);
+    steps += outcome.steps;
+  }
+  INFO(method << ": " << count << " scenes, " << steps << " steps");
+  CHECK(steps > 0);
+}
+
+}  // namespace
+
+TEST_CASE("Random scenes are a pure function of their seed", "[stress][determinism]") {
+  for (unsigned long seed : {1ul, 2ul, 77ul}) {
+    const RandomScene a = randomScene(seed), b = randomScene(seed);
+    REQUIRE(a.world.bodies.size() == b.world.bodies.size());
+    CHECK(a.dt == b.dt);
+    for (std::size_t i = 0; i < a.world.bodies.size(); ++i) {
+      CHECK(a.world.bodies[i].s == b.world.bodies[i].s);
+      CHECK(a.world.bodies[i].halfExtents == b.world.bodies[i].halfExtents);
+      CHECK(a.world.bodies[i].mass == b.world.bodies[i].mass);
+    }
+  }
+}
+
+TEST_CASE("Random scenes start with no two boxes overlapping and none under the ground",
+          "[stress][invariant]") {
+  for (unsigned long seed = 1; seed <= 300; ++seed) {
+    const RandomScene scene = randomScene(seed);
+    const World& w = scene.world;
+    for (std::size_t i = 0; i < w.bodies.size(); ++i) {
+      if (w.bodies[i].immovable) continue;
+      double lowest = w.bodies[i].s.x.y();
+      for (int a = 0; a < 3; ++a) lowest -= w.bodies[i].halfExtents[a] * std::abs(w.bodies[i].R(1, a));
+      INFO(scene.describe() << ", body " << i);
+      CHECK(lowest >= -1e-12);
+    }
+    // Touching (piles, rows) is allowed; overlap beyond rounding is not.
+    for (const ContactManifold& m : findContacts(w, 0.0)) {
+      INFO(scene.describe() << ", bodies " << m.a << " and " << m.b);
+      CHECK(m.depth <= 1e-9);
+    }
+  }
+}
+
+// Scene counts: each test case a second or two in a Release build (about 4000 steps in all for
+// the impulse-based techniques, a few hundred for the chronological ones, whose resting piles
+// meet their event limits every step).
+TEST_CASE("Stress: basic colliding keeps states finite and bodies above the ground",
+          "[basic_colliding][stress]") {
+  stressSeeds("basic_colliding", 40);
+}
+
+TEST_CASE("Stress: the analytic method keeps states finite and bodies above the ground",
+          "[analytic_lcp][stress]") {
+  stressSeeds("analytic", 60);
+}
+
+TEST_CASE("Stress: the plain impulse step keeps states finite and bodies above the ground",
+          "[impulse_damped][stress]") {
+  stressSeeds("impulse", 100);
+}
+
+TEST_CASE("Stress: damped integration keeps states finite, bodies above the ground and energy "
+          "within its derived sources",
+          "[impulse_damped][stress]") {
+  stressSeeds("damped", 100);
+}
+
+TEST_CASE("Stress: the simple and safer timewarps keep states finite and bodies above the ground",
+          "[timewarp][stress]") {
+  stressSeeds("timewarp_simple", 10);
+  stressSeeds("timewarp_safer", 10);
+}
+
+TEST_CASE("Stress: the swept timewarp keeps states finite and bodies above the ground",
+          "[timewarp][stress]") {
+  stressSeeds("timewarp_swept", 3);
+}
+
+// Regression (random stress, timewarp_simple and timewarp_safer): past its event limit the
+// timewarp made every test state valid, also those of bodies whose collisions it had dropped,
+// so a resting pile (every contact a collision again each frame) sank through the ground.
+TEST_CASE("A timewarp frame that hits its event limit leaves no body sinking into the ground",
+          "[timewarp][stress][regression]") {
+  for (const TimewarpVariant variant : {TimewarpVariant::Simple, TimewarpVariant::Safer}) {
+    World world = groundWorld();
+    // A heavy box on two light ones: the collisions between them crowd together (§4.3).
+    addBox(world, "bottom", Vec3(0.5, 0.5, 0.5), Vec3(0.0, 0.5, 0.0));
+    addBox(world, "middle", Vec3(0.5, 0.5, 0.5), Vec3(0.0, 1.5, 0.0));
+    addBox(world, "top", Vec3(0.5, 0.5, 0.5), Vec3(0.0, 2.5, 0.0));
+    world.bodies[3].mass = 400.0;
+    world.bodies[3].invMass = 1.0 / 400.0;
+    world.bodies[3].IbodyInvDiag = 1.0 / 400.0 * world.bodies[1].IbodyInvDiag;
+    world.bodies[3].updateDerived();
+    TimewarpParams params;
+    params.variant = variant;
+    params.maxEventsPerStep = 20;
+    TimewarpStepper stepper(params);
+    bool limited = false;
+    const double dt = 1.0 / 60.0;
+    for (int k = 0; k < 60; ++k) limited = stepper.step(world, dt).limitReached || limited;
+    REQUIRE(limited);
+    // Lowest face of each box: never deeper into what it rests on than the slop of
+    // FIXINTERPENETRATION plus one step of gravity's travel.
+    const double tolerance = FixContactParams{}.slop * 0.5 + 9.81 * dt * dt;
+    INFO(timewarpMethodName(variant));
+    CHECK(world.bodies[1].s.x.y() - 0.5 >= -tolerance);
+    CHECK(world.bodies[2].s.x.y() - world.bodies[1].s.x.y() >= 1.0 - tolerance);
+    CHECK(world.bodies[3].s.x.y() - world.bodies[2].s.x.y() >= 1.0 - tolerance);
+  }
+}
+
+// Known bug, in src/boxsim/impulse_damped/contact_gathering.cpp (ContactGathering::begin, the
+// broad and narrow phase of the pairs with a fast body): under the default once-per-step
+// gathering, a pair of a fast body (moved to its predicted pose) and a slow one (left where it
+// is) is tested with the plain margin. In the pile of stress seed 103 (dt 1/60 s) a thin slab
+// (ℓ = 6 cm) stands on the ground, a plate (ℓ = 7 cm) on it and a box (ℓ = 25 cm) on the plate:
+// slab and plate are fast (their g Δt² = 2.7 mm exceeds exactReach ℓ), the box slow. Each pass
+// moves the plate down 2.7 mm and leaves the box, so their contact is never seen: the box keeps
+// the velocity −g Δt and FIXCONTACTCONSTRAINTS lifts it back every step (energy and squirm the
+// long stress run flagged). Every-pass gathering, A.2 as written, leaves it at rest.
+// [!shouldfail] keeps the suite green until the fix lands; Catch then reports this test as
+// failing, and the tag must go.
+TEST_CASE("Once-per-step gathering finds the contact of a slow box resting on a fast plate",
+          "[impulse_damped][stress][regression][!shouldfail]") {
+  for (const ContactGatheringMode mode :
+       {ContactGatheringMode::EveryPass, ContactGatheringMode::OncePerStep}) {
+    RandomScene scene = randomScene(103, affordableSpec("damped"));
+    REQUIRE(scene.world.bodies.size() == 4);
+    DampedIntegrationParams params;
+    params.impulse.gathering = mode;
+    DampedIntegrationStepper stepper(params);
+    stepper.step(scene.world, scene.dt);
+    INFO(contactGatheringName(mode));
+    CHECK(scene.world.bodies[3].v.y() == 0.0);
+  }
+}
