@@ -139,6 +139,7 @@ StepStats advanceColliding(World& world, double dt, const BasicCollidingParams& 
       // The focus pair always has a body still moving (it did not intersect at `start`), so
       // every hold takes at least one more body and the loop ends.
       if (held.empty()) held.assign(world.bodies.size(), 0);
+      const long movingBefore = moving();
       held[toi.pair.first] = !world.bodies[toi.pair.first].immovable;
       held[toi.pair.second] = !world.bodies[toi.pair.second].immovable;
       for (const Collision& c : collisions) {
@@ -147,6 +148,10 @@ StepStats advanceColliding(World& world, double dt, const BasicCollidingParams& 
       }
       stats.limitReached = true;
       eventsSinceHold = 0;
+      // A pair that already intersected at `start` (a body launched into one that had moved to
+      // its launch pose) breaks the premise above: holding takes no new body, the search finds
+      // the same pair at time 0 again, and the loop would never end. Drop the rest of the step.
+      if (moving() == movingBefore) break;
     } else {
       // §2.1 step 4: respond with Newtonian impulses, then integrate on from the contact time.
       // Every search counts as an event, even when no pair still approaches at the contact time

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fstream>
 #include <initializer_list>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -11,6 +12,7 @@
 #include "boxsim/basic_colliding/time_of_impact.hpp"
 #include "boxsim/collision/broad_phase.hpp"
 #include "boxsim/collision/separating_axis.hpp"
+#include "boxsim/core/math.hpp"
 #include "boxsim/io/scene_builders.hpp"
 
 namespace boxsim {
@@ -21,6 +23,26 @@ using Json = nlohmann::json;
 /// Most bodies a scene may hold: a bound on memory and on the start-overlap check, far above
 /// the thesis' largest scene (1000 cubes) and the 10 000-cube clump of the benchmarks.
 constexpr int kMaxBodies = 20000;
+
+/// Range of one kind of scene number, with its unit for messages.
+struct Range {
+  double lo;         ///< smallest magnitude allowed (0: none)
+  double hi;         ///< largest magnitude allowed
+  const char* unit;  ///< SI unit, for messages
+};
+// The ranges every number of a scene must lie in. Finite is not enough: the techniques form
+// products such as the inertia m h^2, its inverse, the momenta m v and I w and the squares of
+// lengths in the separating-axis test, and far-out inputs make these underflow to 0 or overflow
+// to infinity (half extents of 1e-200 m give an inertia of 0, an infinite inverse inertia and a
+// NaN state after one step). Within these ranges every such product is a finite, non-zero
+// double with over a hundred orders of magnitude to spare; the techniques' own tolerances are
+// tuned for bodies of centimetres to metres, far inside them.
+constexpr Range kSizeRange{1e-6, 1e6, "m"};      ///< half extents, cube sizes, spacing, ground
+constexpr Range kMassRange{1e-6, 1e6, "kg"};     ///< masses
+constexpr Range kCoordinateRange{0.0, 1e6, "m"};  ///< positions, origins, centres, gaps, height
+constexpr Range kSpeedRange{0.0, 1e6, "m/s"};     ///< velocities and the clump's speed
+constexpr Range kAngularSpeedRange{0.0, 1e6, "rad/s"};  ///< angular velocities
+constexpr Range kGravityRange{0.0, 1e6, "m/s^2"};       ///< gravity components
 
 /// One JSON value with its path, for reading values with errors that say where they were.
 class Node {
@@ -59,15 +81,31 @@ class Node {
     if (!std::isfinite(x)) fail("the number is not finite", "write a finite number");
     return x;
   }
-  double positive(const char* unit) const {
+  /// A number of magnitude at most range.hi (range.lo is not checked: zero is allowed).
+  double bounded(const Range& range) const {
     const double x = number();
-    if (!(x > 0.0))
-      fail("must be > 0 " + std::string(unit) + " (got " + text(x) + ")",
-           "give a positive value");
+    if (std::abs(x) > range.hi)
+      fail("must lie within +-" + text(range.hi) + " " + range.unit + " (got " + text(x) + ")",
+           "give a value in that range; scenes are limited to it so that the physics stays "
+           "within double precision");
     return x;
   }
-  double nonNegative(const char* unit) const {
+  /// A number in [range.lo, range.hi].
+  double positive(const Range& range) const {
     const double x = number();
+    if (!(x > 0.0))
+      fail("must be > 0 " + std::string(range.unit) + " (got " + text(x) + ")",
+           "give a positive value");
+    if (x < range.lo || x > range.hi)
+      fail("must lie in [" + text(range.lo) + ", " + text(range.hi) + "] " + range.unit +
+               " (got " + text(x) + ")",
+           "give a value in that range; scenes are limited to it so that the physics stays "
+           "within double precision");
+    return x;
+  }
+  /// A number >= 0, and at most `limit` when one is given.
+  double nonNegative(const char* unit, const Range* limit = nullptr) const {
+    const double x = limit ? bounded(*limit) : number();
     if (x < 0.0)
       fail("must be >= 0 " + std::string(unit) + " (got " + text(x) + ")",
            "give zero or a positive value");
@@ -95,20 +133,27 @@ class Node {
     if (!value_.is_string()) fail("expected a string, got " + describe(), "write a quoted string");
     return value_.get<std::string>();
   }
-  Vec3 vec3() const {
+  /// [x, y, z] of finite numbers; with a range, each of magnitude at most range->hi.
+  Vec3 vec3(const Range* range = nullptr) const {
     if (!value_.is_array() || value_.size() != 3)
       fail("expected an array of 3 numbers, got " + describe(), "write [x, y, z]");
     Vec3 v;
-    for (int i = 0; i < 3; ++i) v[i] = Node(value_[i], path_ + "/" + std::to_string(i), source_).number();
+    for (int i = 0; i < 3; ++i) {
+      const Node component(value_[i], path_ + "/" + std::to_string(i), source_);
+      v[i] = range ? component.bounded(*range) : component.number();
+    }
     return v;
   }
-  Vec3 positiveVec3(const char* unit) const {
+  Vec3 vec3(const Range& range) const { return vec3(&range); }
+  Vec3 positiveVec3(const Range& range) const {
     const Vec3 v = vec3();
-    for (int i = 0; i < 3; ++i)
+    for (int i = 0; i < 3; ++i) {
+      const Node component(value_[i], path_ + "/" + std::to_string(i), source_);
       if (!(v[i] > 0.0))
-        Node(value_[i], path_ + "/" + std::to_string(i), source_)
-            .fail("must be > 0 " + std::string(unit) + " (got " + text(v[i]) + ")",
-                  "give positive half extents");
+        component.fail("must be > 0 " + std::string(range.unit) + " (got " + text(v[i]) + ")",
+                       "give positive half extents");
+      component.positive(range);
+    }
     return v;
   }
   /// [w, x, y, z], non-zero, normalised.
@@ -134,11 +179,8 @@ class Node {
     if (d.size() > 40) d = d.substr(0, 37) + "...";
     return std::string(value_.type_name()) + " " + d;
   }
-  static std::string text(double x) {
-    std::ostringstream os;
-    os << x;
-    return os.str();
-  }
+  // Shortest round-trip text, so that a value just outside a range is not printed as its bound.
+  static std::string text(double x) { return shortestText(x); }
 
   const Json& value_;
   std::string path_;
@@ -168,7 +210,7 @@ void readBody(const Node& node, Scene& scene, std::set<std::string>& names) {
   node.allowKeys({"name", "half_extents", "mass", "position", "orientation", "velocity",
                   "angular_velocity", "immovable", "launch_time"});
   if (!node.has("half_extents")) node.fail("missing \"half_extents\"", "add \"half_extents\": [0.5, 0.5, 0.5]");
-  const Vec3 halfExtents = node.at("half_extents").positiveVec3("m");
+  const Vec3 halfExtents = node.at("half_extents").positiveVec3(kSizeRange);
   const bool immovable = node.has("immovable") && node.at("immovable").boolean();
   RigidBody body;
   if (immovable) {
@@ -177,15 +219,15 @@ void readBody(const Node& node, Scene& scene, std::set<std::string>& names) {
   } else {
     if (!node.has("mass"))
       node.fail("missing \"mass\"", "add \"mass\" in kg, or \"immovable\": true");
-    body = RigidBody::box(halfExtents, node.at("mass").positive("kg"));
+    body = RigidBody::box(halfExtents, node.at("mass").positive(kMassRange));
   }
-  if (node.has("position")) body.s.x = node.at("position").vec3();
+  if (node.has("position")) body.s.x = node.at("position").vec3(kCoordinateRange);
   if (node.has("orientation")) body.s.q = readOrientation(node.at("orientation"));
   body.updateDerived();
   if (node.has("velocity") || node.has("angular_velocity")) {
     if (immovable) node.fail("an immovable body cannot move", "remove its velocities");
-    if (node.has("velocity")) body.setVelocity(node.at("velocity").vec3());
-    if (node.has("angular_velocity")) body.setAngularVelocity(node.at("angular_velocity").vec3());
+    if (node.has("velocity")) body.setVelocity(node.at("velocity").vec3(kSpeedRange));
+    if (node.has("angular_velocity")) body.setAngularVelocity(node.at("angular_velocity").vec3(kAngularSpeedRange));
   }
   std::string name = "body_" + std::to_string(scene.world.bodies.size());
   if (node.has("name")) name = node.at("name").name();
@@ -213,18 +255,18 @@ void readBuilder(const Node& node, Scene& scene, std::set<std::string>& names) {
                             " bodies, more than the limit of " + std::to_string(kMaxBodies),
                         "build fewer boxes");
   };
-  const auto size = [&](double fallback) { return node.has("size") ? node.at("size").positive("m") : fallback; };
-  const auto mass = [&](double fallback) { return node.has("mass") ? node.at("mass").positive("kg") : fallback; };
+  const auto size = [&](double fallback) { return node.has("size") ? node.at("size").positive(kSizeRange) : fallback; };
+  const auto mass = [&](double fallback) { return node.has("mass") ? node.at("mass").positive(kMassRange) : fallback; };
   if (type == "die") {
     node.allowKeys({"type", "size", "mass", "position", "tilt_deg", "tilt_axis", "velocity", "angular_velocity"});
     DieSpec spec;
     spec.size = size(spec.size);
     spec.mass = mass(spec.mass);
-    if (node.has("position")) spec.position = node.at("position").vec3();
+    if (node.has("position")) spec.position = node.at("position").vec3(kCoordinateRange);
     if (node.has("tilt_deg")) spec.tiltDeg = node.at("tilt_deg").number();
     if (node.has("tilt_axis")) spec.tiltAxis = node.at("tilt_axis").nonZeroVec3("the tilt axis");
-    if (node.has("velocity")) spec.velocity = node.at("velocity").vec3();
-    if (node.has("angular_velocity")) spec.angularVelocity = node.at("angular_velocity").vec3();
+    if (node.has("velocity")) spec.velocity = node.at("velocity").vec3(kSpeedRange);
+    if (node.has("angular_velocity")) spec.angularVelocity = node.at("angular_velocity").vec3(kAngularSpeedRange);
     addDie(scene.world, spec);
   } else if (type == "tower") {
     node.allowKeys({"type", "count", "size", "mass", "origin", "gap"});
@@ -233,8 +275,8 @@ void readBuilder(const Node& node, Scene& scene, std::set<std::string>& names) {
     if (node.has("count")) requireRoom("count", spec.count);
     spec.size = size(spec.size);
     spec.mass = mass(spec.mass);
-    if (node.has("origin")) spec.origin = node.at("origin").vec3();
-    if (node.has("gap")) spec.gap = node.at("gap").nonNegative("m");
+    if (node.has("origin")) spec.origin = node.at("origin").vec3(kCoordinateRange);
+    if (node.has("gap")) spec.gap = node.at("gap").nonNegative("m", &kCoordinateRange);
     addTower(scene.world, spec);
   } else if (type == "pyramid") {
     node.allowKeys({"type", "base", "size", "mass", "origin", "gap"});
@@ -243,8 +285,8 @@ void readBuilder(const Node& node, Scene& scene, std::set<std::string>& names) {
     if (node.has("base")) requireRoom("base", 0.5 * spec.base * (spec.base + 1.0));
     spec.size = size(spec.size);
     spec.mass = mass(spec.mass);
-    if (node.has("origin")) spec.origin = node.at("origin").vec3();
-    if (node.has("gap")) spec.gap = node.at("gap").nonNegative("m");
+    if (node.has("origin")) spec.origin = node.at("origin").vec3(kCoordinateRange);
+    if (node.has("gap")) spec.gap = node.at("gap").nonNegative("m", &kCoordinateRange);
     addPyramid(scene.world, spec);
   } else if (type == "clump") {
     node.allowKeys({"type", "count", "size", "mass", "spacing", "center", "speed"});
@@ -253,12 +295,15 @@ void readBuilder(const Node& node, Scene& scene, std::set<std::string>& names) {
     if (node.has("count")) requireRoom("count", spec.count);
     spec.size = size(spec.size);
     spec.mass = mass(spec.mass);
-    if (node.has("spacing")) spec.spacing = node.at("spacing").positive("m");
-    if (node.has("center")) spec.center = node.at("center").vec3();
-    if (node.has("speed")) spec.speed = node.at("speed").number();
+    if (node.has("spacing")) spec.spacing = node.at("spacing").positive(kSizeRange);
+    if (node.has("center")) spec.center = node.at("center").vec3(kCoordinateRange);
+    if (node.has("speed")) spec.speed = node.at("speed").bounded(kSpeedRange);
+    // Without a "spacing" key the default spacing can still be too small for a large "size";
+    // the error then names "size", the key that is there.
     if (!(spec.spacing > spec.size))
-      node.at("spacing").fail("the spacing must exceed the cube size so the cubes start apart",
-                              "make \"spacing\" larger than \"size\"");
+      (node.has("spacing") ? node.at("spacing") : node.at("size"))
+          .fail("the spacing (2 m unless given) must exceed the cube size so the cubes start apart",
+                "make \"spacing\" larger than \"size\"");
     addClump(scene.world, spec);
   } else {
     node.at("type").fail("unknown builder type \"" + type + "\"",
@@ -280,7 +325,11 @@ void checkNoOverlap(const Scene& scene) {
   // Boxes may touch at the start (a stacked tower overlaps by rounding) but not overlap by
   // more than the techniques' own intersection threshold.
   const double tolerance = TimeOfImpactParams{}.depthTolerance;
-  const World& w = scene.world;
+  // A body waiting for its launch is immovable until then, and pairs of two immovable bodies
+  // are never candidates; so check a copy with every body launched, or a body waiting inside
+  // the ground or a wall would first collide when its launch starts inside it.
+  World w = scene.world;
+  w.applyLaunches(std::numeric_limits<double>::infinity());
   for (const auto& [i, j] : candidatePairs(w)) {
     const SeparatingAxisResult sat = separatingAxisTest(Obb::of(w.bodies[i]), Obb::of(w.bodies[j]));
     if (sat.depth > tolerance) {
@@ -351,7 +400,7 @@ Scene parseScene(const std::string& text, const std::string& source) {
   top.requireObject("a scene");
   top.allowKeys({"description", "gravity", "restitution", "ground", "bodies", "builders"});
   if (top.has("description")) scene.description = top.at("description").string();
-  if (top.has("gravity")) scene.world.gravity = top.at("gravity").vec3();
+  if (top.has("gravity")) scene.world.gravity = top.at("gravity").vec3(kGravityRange);
   if (top.has("restitution")) {
     const Node e = top.at("restitution");
     scene.world.restitution = e.number();
@@ -363,9 +412,9 @@ Scene parseScene(const std::string& text, const std::string& source) {
     const Node g = top.at("ground");
     g.requireObject("the ground {\"height\": 0, \"half_size\": 50, \"half_thickness\": 0.5}");
     g.allowKeys({"height", "half_size", "half_thickness"});
-    const double height = g.has("height") ? g.at("height").number() : 0.0;
-    const double halfSize = g.has("half_size") ? g.at("half_size").positive("m") : 50.0;
-    const double halfThickness = g.has("half_thickness") ? g.at("half_thickness").positive("m") : 0.5;
+    const double height = g.has("height") ? g.at("height").bounded(kCoordinateRange) : 0.0;
+    const double halfSize = g.has("half_size") ? g.at("half_size").positive(kSizeRange) : 50.0;
+    const double halfThickness = g.has("half_thickness") ? g.at("half_thickness").positive(kSizeRange) : 0.5;
     const int ground = scene.world.addGround(height, halfSize, halfThickness);
     scene.origins.push_back("/ground");
     names.insert(scene.world.names[ground]);

@@ -28,10 +28,14 @@ struct Scene {
   std::vector<std::string> origins;
 };
 
-/// Parses and validates scene text. `source` names it in error messages.
+/// Parses and validates scene text. `source` names it in error messages; loadScene() reads a
+/// file and calls this, so the command line and this function accept exactly the same scenes.
 /// Checks: well-formed JSON; only known keys; numbers finite; masses, extents, counts and
-/// sizes positive; quaternions non-zero; names free of white space and unique; no two boxes
-/// overlapping at the start (touching is allowed). Throws SceneError.
+/// sizes positive; numbers in the range where the physics stays within double precision
+/// (masses in [1e-6, 1e6] kg; half extents, cube sizes, spacings and ground sizes in
+/// [1e-6, 1e6] m; coordinates and gaps, speeds, angular speeds and gravity of magnitude at
+/// most 1e6 m, m/s, rad/s and m/s²); quaternions non-zero; names free of white space and
+/// unique; no two boxes overlapping at the start (touching is allowed). Throws SceneError.
 Scene parseScene(const std::string& text, const std::string& source);
 
 /// Reads and parses a scene file; throws SceneError (also when the file cannot be read).
