@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 #include "boxsim/collision/broad_phase.hpp"
 #include "boxsim/collision/contact_manifold.hpp"
@@ -285,7 +286,13 @@ bool ContactGathering::predictedContact(const World& world, const CachedPair& pa
 
 bool ContactGathering::exactContact(const World& world, int i, int j, double margin,
                                     ImpulseContact& contact) {
-  ContactManifold m = collideBoxes(Obb::of(world.bodies[i]), Obb::of(world.bodies[j]), margin);
+  return contactOf(world, i, j,
+                   collideBoxes(Obb::of(world.bodies[i]), Obb::of(world.bodies[j]), margin),
+                   contact);
+}
+
+bool ContactGathering::contactOf(const World& world, int i, int j, ContactManifold m,
+                                 ImpulseContact& contact) {
   if (m.count == 0) return false;
   m.a = i;
   m.b = j;
@@ -406,11 +413,7 @@ bool ContactGathering::candidateContact(const World& world, std::size_t k, doubl
   ContactManifold m = buildContactManifold(a, b, sat, margin);
   candidate.axis = sat;
   candidate.apart = m.count == 0;
-  if (m.count == 0) return false;
-  m.a = candidate.a;
-  m.b = candidate.b;
-  contact = normals_.contactOf(world, m);
-  return true;
+  return contactOf(world, candidate.a, candidate.b, std::move(m), contact);
 }
 
 void ContactGathering::end(World& world) {

@@ -156,6 +156,9 @@ class ContactGathering {
                         double dt, double margin, ImpulseContact& contact) const;
   /// The narrow phase of bodies i < j where they stand; false when they do not touch.
   bool exactContact(const World& world, int i, int j, double margin, ImpulseContact& contact);
+  /// The contact of bodies i < j from their manifold m (the normal model's choice); false
+  /// when m has no point.
+  bool contactOf(const World& world, int i, int j, ContactManifold m, ImpulseContact& contact);
   /// exactContact for a pair of the step's candidates, trying its last separating axis first
   /// and remembering the axis of this test.
   bool candidateContact(const World& world, std::size_t candidate, double margin,
