@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <stdexcept>
 #include <utility>
 
@@ -322,6 +323,7 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
   std::vector<int>& outgrown = outgrown_;
   fast.clear();
   outgrown.clear();
+  passReach_.assign(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
     const RigidBody& body = world.bodies[i];
     if (body.immovable) continue;
@@ -329,6 +331,7 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
     const Vec3 u = body.v + gravityStep;
     const double turn = dt * body.omega.norm() * halfDiagonal_[i];
     const double r = dt * (u.norm() + body.omega.norm() * halfDiagonal_[i]);
+    passReach_[i] = r;
     if (!fast_[i] && r <= slowReach_[i]) continue;
     fast.push_back(static_cast<int>(i));
     if (!withinGuard(body, static_cast<int>(i), Vec3(dt * u), turn))
@@ -338,8 +341,9 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
   // its growth; one that outgrew it needs its pairs found afresh, from the poses the bodies
   // stand at.
   if (!outgrown.empty()) growCandidates(world, gravityStep, dt, margin, outgrown);
-  predictedLo_.resize(n);
-  predictedHi_.resize(n);
+  // Bounds where each body stands in this pass: the current ones until a body moves.
+  predictedLo_ = lo_;
+  predictedHi_ = hi_;
   bool anyFast = false;
   for (int i : fast) {
     RigidBody& body = world.bodies[i];
@@ -359,27 +363,52 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
   // stand, as written. The broad phase is sweepAndPrunePairs' own test on the candidates, so
   // it keeps the pairs a sweep at these poses would find, in the same (a, b) order, which is
   // the cache's order too, so the two lists merge into one.
-  fastPairs_.clear();
+  partner_.assign(n, 0);
+  partners_.clear();
+  fastContacts_.clear();
+  ImpulseContact c;
   if (anyFast)
     for (std::size_t k = 0; k < candidates_.size(); ++k) {
       const int a = candidates_[k].a, b = candidates_[k].b;
       if (!moved_[a] && !moved_[b]) continue;
-      const Vec3& loA = moved_[a] ? predictedLo_[a] : lo_[a];
-      const Vec3& hiA = moved_[a] ? predictedHi_[a] : hi_[a];
-      const Vec3& loB = moved_[b] ? predictedLo_[b] : lo_[b];
-      const Vec3& hiB = moved_[b] ? predictedHi_[b] : hi_[b];
-      if (boundsWithin(loA, hiA, loB, hiB, margin)) fastPairs_.push_back(k);
+      // A.2 L2 for a moved body's slow partner too, as written, so the narrow phase sees both
+      // where the pass predicts them. It moves by at most its reach, so if its bounds stay
+      // farther than that plus the margin from the moved body's, the pair cannot touch in the
+      // pass and it need not move for this pair (its current bounds then fail the test below
+      // as its predicted ones would). It goes back before COLLIDE, below.
+      if (moved_[a] != moved_[b]) {
+        const int i = moved_[a] ? a : b, j = moved_[a] ? b : a;
+        RigidBody& body = world.bodies[j];
+        if (!body.immovable && !partner_[j]) {
+          const double slack =
+              kGuardRoundingSlack * (1.0 + body.s.x.cwiseAbs().maxCoeff() + halfDiagonal_[j]);
+          if (boundsWithin(predictedLo_[i], predictedHi_[i], lo_[j], hi_[j],
+                           margin + passReach_[j] + slack)) {
+            partner_[j] = 1;
+            partners_.push_back(j);
+            saved_[j] = SavedPose{body.s.x, body.s.q, body.R, body.Iinv, false};
+            movePredicted(body, dt, gravityStep);
+            obbBounds(Obb::of(body), 0.0, predictedLo_[j], predictedHi_[j]);
+          }
+        }
+      }
+      if (boundsWithin(predictedLo_[a], predictedHi_[a], predictedLo_[b], predictedHi_[b],
+                       margin) &&
+          candidateContact(world, k, margin, c))
+        fastContacts_.push_back(c);
     }
+  // The partners go back (their velocities recomputed exactly as they were): the slow pairs'
+  // prediction below and COLLIDE see every slow body where it stands.
+  for (int j : partners_) restorePose(world.bodies[j], saved_[j]);
   contacts_.clear();
-  ImpulseContact c;
   std::size_t f = 0;
-  const auto keyOf = [this](std::size_t k) {
-    return std::pair<int, int>(candidates_[k].a, candidates_[k].b);
+  const auto keyOf = [](const ImpulseContact& contact) {
+    return std::pair<int, int>(contact.a, contact.b);
   };
   for (CachedPair& pair : pairs_) {
     const std::pair<int, int> key(pair.contact.a, pair.contact.b);
-    for (; f < fastPairs_.size() && keyOf(fastPairs_[f]) < key; ++f)
-      if (candidateContact(world, fastPairs_[f], margin, c)) contacts_.push_back(c);
+    for (; f < fastContacts_.size() && keyOf(fastContacts_[f]) < key; ++f)
+      contacts_.push_back(fastContacts_[f]);
     // No point to predict from: the narrow phase where the two slow bodies stand.
     // A body that turned fast in this step: its pairs are among the fast ones now, and what
     // they remember of the face comes after anything remembered before.
@@ -397,8 +426,8 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
       contacts_.push_back(c);
     }
   }
-  for (; f < fastPairs_.size(); ++f)
-    if (candidateContact(world, fastPairs_[f], margin, c)) contacts_.push_back(c);
+  contacts_.insert(contacts_.end(), fastContacts_.begin() + static_cast<std::ptrdiff_t>(f),
+                   fastContacts_.end());
   return contacts_;
 }
 

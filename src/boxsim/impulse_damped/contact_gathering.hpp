@@ -26,11 +26,23 @@
 ///     that can come near in the step; each pass applies the broad phase's own test
 ///     (boundsWithin at the pass' poses) to that list alone. A body whose predicted bounds
 ///     would leave its stretched ones (an impulse turned or sped it up) gets new ones and is
-///     tested against every body (or, when many leave theirs at once, the sweep is redone). A fast body in no candidate pair
-///     touches nothing in the step, so it is not moved at all. The narrow phase of a pair that was
-///     apart in its last pass first looks along the axis that separated it (separatedBeyond),
-///     which decides most pairs of a flying clump with one axis instead of fifteen, and
-///     always as the full test would.
+///     tested against every body (or, when many leave theirs at once, the sweep is redone). A
+///     fast body in no candidate pair touches nothing in the step, so it is not moved at all.
+///     The narrow phase of a pair that was apart in its last pass first looks along the axis
+///     that separated it (separatedBeyond), which decides most pairs of a flying clump with one
+///     axis instead of fifteen, and always as the full test would.
+///   - A fast body's slow partners: every slow body whose bounds come within the margin plus its
+///     own reach in the pass of a moved fast body's moves to its predicted pose too, so the narrow
+///     phase of the pair sees both bodies where \alg{A.2} puts them and finds the contact EveryPass
+///     finds. Left where it stands, the partner would be off by up to exactReach ℓ, far more than
+///     the margin (10⁻³ of the smallest ℓ): a thin plate, fast under gravity alone for its small ℓ,
+///     moves down g Δt² in every pass under a resting box that stays, and their contact is never
+///     seen. Widening the pair's margin by the partner's reach instead would find that contact too,
+///     but also pairs that come apart in the pass, and would need each point's depth corrected by
+///     the partner's displacement to tell them apart; moving the partner is the algorithm as
+///     written and costs one pose update per pass. The partners go back to their current poses
+///     before COLLIDE, with velocities recomputed exactly as they were, so the slow pairs'
+///     prediction and the impulses see every slow body in one place.
 ///
 ///   Contacts of both kinds are ordered by pair, as EveryPass orders them. Speculative contacts
 ///   (Catto, "Speculative Contacts", GDC 2013) make the same first-order prediction. On a
@@ -40,11 +52,11 @@
 ///
 ///   DEVIATION(A.2 RESOLVECOLLISIONS L2-L3, RESOLVECONTACTS L2-L3): slow bodies are not moved to
 ///   their predicted poses. The cache is rebuilt when a body's mobility changes (a sleeping
-///   body wakes, \thesis{§4.5}) and every step. What differs from EveryPass: a slow pair's
-///   depth by the rotation error above; the lever arms of its impulse by at most the reach of
-///   its bodies (exactReach ℓ, 1 % of a box's size by default); the manifold's points, which
-///   stay those found at the current pose; and a fast body's slow partner, which stands where
-///   it is rather than up to exactReach ℓ further on.
+///   body wakes, \thesis{§4.5}) and every step. A fast body's slow partner is moved only for
+///   the narrow phase of its pairs with fast bodies. What differs from EveryPass: a slow pair's
+///   depth by the rotation error above; the lever arm of an impulse on a slow body (also one
+///   from a fast partner) by at most that body's reach (exactReach ℓ, 1 % of a box's size by
+///   default); and a slow pair's manifold points, which stay those found at the current pose.
 #pragma once
 
 #include <array>
@@ -206,8 +218,11 @@ class ContactGathering {
   std::vector<int> outgrown_;          ///< this pass: fast bodies that outgrew their bounds
   std::vector<int> fastBodies_;        ///< this pass: bodies fast now or at the cache's build
   std::vector<char> hasCandidate_;     ///< per body: in at least one candidate pair
-  std::vector<Vec3> predictedLo_, predictedHi_;  ///< bounds of the moved bodies in this pass
-  std::vector<std::size_t> fastPairs_;  ///< this pass: candidates whose bounds come near
+  std::vector<Vec3> predictedLo_, predictedHi_;  ///< bounds where each body stands in this pass
+  std::vector<double> passReach_;      ///< m, per movable body: its reach in this pass
+  std::vector<char> partner_;          ///< per body: a slow partner moved for the narrow phase
+  std::vector<int> partners_;          ///< this pass: the slow partners moved
+  std::vector<ImpulseContact> fastContacts_;  ///< this pass: the pairs with a fast body, by pair
 };
 
 }  // namespace boxsim
