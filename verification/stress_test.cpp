@@ -7,6 +7,7 @@
 // the long run found.
 #include <catch2/catch.hpp>
 
+#include <cstdlib>
 #include <memory>
 #include <string>
 
@@ -17,15 +18,18 @@
 #include "boxsim/timewarp/timewarp.hpp"
 #include "random_scenes.hpp"
 #include "test_worlds.hpp"
+#include "workload.hpp"
 
 using namespace boxsim;
 using namespace boxsim::testing;
 
 namespace {
 
-/// Runs `method` on the scenes of seeds 1..count and requires every check to hold on each.
-void stressSeeds(const std::string& method, unsigned long count) {
+/// Runs `method` on the scenes of seeds 1..scaledCount(full) (workload.hpp: all `full` of them
+/// unless BOXSIM_TEST_WORKLOAD asks for a share) and requires every check to hold on each.
+void stressSeeds(const std::string& method, long full) {
   const RandomSceneSpec spec = affordableSpec(method);
+  const auto count = static_cast<unsigned long>(scaledCount(full));
   long steps = 0;
   for (unsigned long seed = 1; seed <= count; ++seed) {
     const RandomScene scene = randomScene(seed, spec);
@@ -75,9 +79,29 @@ TEST_CASE("Random scenes start with no two boxes overlapping and none under the 
   }
 }
 
+TEST_CASE("BOXSIM_TEST_WORKLOAD scales the stress seeds and rejects a share not above 0 or "
+          "above 1",
+          "[stress][workload]") {
+  const char* before = std::getenv("BOXSIM_TEST_WORKLOAD");
+  const bool wasSet = before != nullptr;
+  const std::string saved = wasSet ? before : "";
+  ::setenv("BOXSIM_TEST_WORKLOAD", "0.1", 1);
+  CHECK(scaledCount(100) == 10);
+  CHECK(scaledCount(3) == 1);  // 0.3 rounds to 0, and a scaled test always runs
+  for (const char* bad : {"0", "1.5", "-0.1", "", "tenth", "0.1x", "nan"}) {
+    ::setenv("BOXSIM_TEST_WORKLOAD", bad, 1);
+    INFO("BOXSIM_TEST_WORKLOAD=" << bad);
+    CHECK_THROWS_WITH(testWorkload(), Catch::Contains("expected a number in (0, 1]"));
+  }
+  ::unsetenv("BOXSIM_TEST_WORKLOAD");
+  CHECK(scaledCount(100) == 100);
+  if (wasSet) ::setenv("BOXSIM_TEST_WORKLOAD", saved.c_str(), 1);
+}
+
 // Scene counts: each test case a second or two in a Release build (about 4000 steps in all for
 // the impulse-based techniques, a few hundred for the chronological ones, whose resting piles
-// meet their event limits every step).
+// meet their event limits every step). BOXSIM_TEST_WORKLOAD (workload.hpp) runs a share of the
+// seeds: the sanitize preset runs a tenth.
 TEST_CASE("Stress: basic colliding keeps states finite and bodies above the ground",
           "[basic_colliding][stress]") {
   stressSeeds("basic_colliding", 40);
@@ -143,19 +167,18 @@ TEST_CASE("A timewarp frame that hits its event limit leaves no body sinking int
   }
 }
 
-// Known bug, in src/boxsim/impulse_damped/contact_gathering.cpp (ContactGathering::begin, the
-// broad and narrow phase of the pairs with a fast body): under the default once-per-step
-// gathering, a pair of a fast body (moved to its predicted pose) and a slow one (left where it
-// is) is tested with the plain margin. In the pile of stress seed 103 (dt 1/60 s) a thin slab
-// (ℓ = 6 cm) stands on the ground, a plate (ℓ = 7 cm) on it and a box (ℓ = 25 cm) on the plate:
-// slab and plate are fast (their g Δt² = 2.7 mm exceeds exactReach ℓ), the box slow. Each pass
-// moves the plate down 2.7 mm and leaves the box, so their contact is never seen: the box keeps
-// the velocity −g Δt and FIXCONTACTCONSTRAINTS lifts it back every step (energy and squirm the
-// long stress run flagged). Every-pass gathering, A.2 as written, leaves it at rest.
-// [!shouldfail] keeps the suite green until the fix lands; Catch then reports this test as
-// failing, and the tag must go.
+// Regression (random stress, damped): under once-per-step gathering a pair of a fast body
+// (moved to its predicted pose) and a slow one (left where it stood) was tested at the plain
+// margin. In the pile of stress seed 103 (dt 1/60 s) a thin slab (ℓ = 6 cm) stands on the
+// ground, a plate (ℓ = 7 cm) on it and a box (ℓ = 25 cm) on the plate: slab and plate are fast
+// (their g Δt² = 2.7 mm exceeds exactReach ℓ), the box slow. Each pass moved the plate down
+// 2.7 mm and left the box, so their contact was never seen: the box kept the velocity −g Δt and
+// FIXCONTACTCONSTRAINTS lifted it back every step (energy and squirm the long stress run
+// flagged). Now a slow body near a moved fast one is moved to its predicted pose for their
+// narrow phase (contact_gathering.hpp), so the box is found on the plate, as every-pass
+// gathering (A.2 as written) finds it, and the first step's contacts stop its fall exactly.
 TEST_CASE("Once-per-step gathering finds the contact of a slow box resting on a fast plate",
-          "[impulse_damped][stress][regression][!shouldfail]") {
+          "[impulse_damped][stress][regression]") {
   for (const ContactGatheringMode mode :
        {ContactGatheringMode::EveryPass, ContactGatheringMode::OncePerStep}) {
     RandomScene scene = randomScene(103, affordableSpec("damped"));
