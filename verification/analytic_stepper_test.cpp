@@ -66,7 +66,8 @@ TEST_CASE("Under the analytic method the pyramids of base 10 stay at rest, touch
   }
 }
 
-TEST_CASE("Under the thesis' LCP settings the force clamp changes nothing; the drift is velocity",
+TEST_CASE("Under the thesis' LCP settings the force clamp changes nothing, and the drift is "
+          "velocity",
           "[analytic_lcp][analytic][stack][thesis]") {
   // §3.3.1 blames sinking on negative forces the clamp removes. With Baraff's maxstep the
   // forces never go negative beyond rounding, so a resting tower follows the same trajectory

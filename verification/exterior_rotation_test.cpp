@@ -128,7 +128,7 @@ TEST_CASE("Every pivot stays compressive, above a quarter of its initial load, o
   }
 }
 
-TEST_CASE("Forward Euler separates the contacts at first order in dt; semi-implicit Euler too",
+TEST_CASE("Forward Euler separates the contacts at first order in dt, and semi-implicit Euler too",
           "[exterior_rotation][thesis_claim]") {
   const std::vector<double> dts = halvings(1.0 / 120.0);
   for (const StickingScene& scene : allStickingScenes()) {

@@ -144,7 +144,8 @@ TEST_CASE("Sign-aligned mean and Markley's average agree for a window of chatter
   CHECK_THROWS_AS(averageOrientations(q.data(), 0, q[0], OrientationAverage::Markley), std::invalid_argument);
 }
 
-TEST_CASE("On the resting die the box filter lowers chatter at least 20-fold; the envelope filter stills it",
+TEST_CASE("On the resting die the box filter lowers chatter at least 20-fold, the envelope "
+          "filter stills it",
           "[filtering][chatter]") {
   const Trajectory& raw = chatteringDie();
   const FrameWindow rest = frameWindow(raw, 10.5, 12.0);

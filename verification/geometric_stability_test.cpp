@@ -218,7 +218,7 @@ TEST_CASE("Fig. 5.4 chained: every cube of a tower of 5 on the ground is stable"
   }
 }
 
-TEST_CASE("Fig. 5.5: a box bridging two stable boxes is stable; on one of them it is not",
+TEST_CASE("Fig. 5.5: a box bridging two stable boxes is stable, on one of them it is not",
           "[geometric_stability][thesis_claim]") {
   CHECK(stableNames(fig5_5Bridge(true)) == Names{"ground", "left", "right", "bridge"});
   CHECK(stableNames(fig5_5Bridge(false)) == Names{"ground", "left"});

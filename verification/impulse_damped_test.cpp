@@ -227,7 +227,8 @@ TEST_CASE("The plain impulse step, measured on the tower and the pyramid: the to
   CHECK(deepest < 1e-2);
 }
 
-TEST_CASE("Damping colliding bodies too brings the clump of Fig. 6.7 to rest; A.2 as written does not",
+TEST_CASE("Damping colliding bodies too brings the clump of Fig. 6.7 to rest, A.2 as "
+          "written does not",
           "[impulse_damped][chatter][clump]") {
   // Measured, and the reason the switch exists: with damping only in contact (A.2 L2 as the
   // thesis words it) the clump's cubes bounce and slide without end on the frictionless ground.

@@ -237,7 +237,8 @@ TEST_CASE("Faces are Lambert-shaded from above: the top of a box is its brightes
   CHECK(faces[0].rgb != faces[2].rgb);
 }
 
-TEST_CASE("Bodies named in bodyColours are filled with their colour; an unknown name is refused",
+TEST_CASE("Bodies named in bodyColours are filled with their colour, and an unknown name is "
+          "refused",
           "[render][shading]") {
   // Two cubes side by side, "dark" given a dark grey: its three faces are shades of that grey
   // (equal channels, no channel above the unshaded 0x40), the other keeps the palette.
