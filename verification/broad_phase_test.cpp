@@ -90,6 +90,12 @@ bool sameContacts(const std::vector<ContactManifold>& p, const std::vector<Conta
   return true;
 }
 
+/// A copy of world whose queries run the given broad phase.
+World withBroadPhase(World world, BroadPhase kind) {
+  world.broadPhase = kind;
+  return world;
+}
+
 /// The clump of \thesis{Fig. 6.7} after every cube has moved for t seconds at its initial
 /// velocity: by t = 0.5 s neighbours overlap, and they keep overlapping more after that.
 World collapsedClump(int count, double t) {
@@ -116,9 +122,10 @@ TEST_CASE("Sweep and prune returns exactly the all-pairs list on 200 random scen
     for (double margin : {0.0, 0.1}) {
       INFO("scene " << scene << ", " << world.bodies.size() << " bodies, margin " << margin
                     << (snapped ? ", snapped" : "") << (immovables ? ", with immovables" : ""));
-      const Pairs reference = candidatePairs(world, margin, BroadPhase::AllPairs);
+      const Pairs reference = candidatePairs(withBroadPhase(world, BroadPhase::AllPairs), margin);
       REQUIRE(sweepAndPrunePairs(world, margin) == reference);
-      REQUIRE(candidatePairs(world, margin, BroadPhase::SweepAndPrune) == reference);
+      REQUIRE(candidatePairs(withBroadPhase(world, BroadPhase::SweepAndPrune), margin) ==
+              reference);
       totalPairs += static_cast<long>(reference.size());
     }
   }
@@ -133,11 +140,11 @@ TEST_CASE("Sweep and prune reports touching bounds: the base-20 pyramid's 590 ex
   REQUIRE(addPyramid(world, PyramidSpec{20}) == 210);
   // Unit cubes on a half-integer grid touch exactly: 19 + 18 + ... + 0 = 190 side by side in
   // the rows, 2 under each of the 190 cubes above the bottom row, and 20 on the ground.
-  const Pairs reference = candidatePairs(world, 0.0, BroadPhase::AllPairs);
+  const Pairs reference = candidatePairs(withBroadPhase(world, BroadPhase::AllPairs), 0.0);
   CHECK(reference.size() == 190 + 2 * 190 + 20);
   CHECK(sweepAndPrunePairs(world, 0.0) == reference);
-  CHECK(candidatePairs(world, 0.1, BroadPhase::SweepAndPrune) ==
-        candidatePairs(world, 0.1, BroadPhase::AllPairs));
+  CHECK(candidatePairs(withBroadPhase(world, BroadPhase::SweepAndPrune), 0.1) ==
+        candidatePairs(withBroadPhase(world, BroadPhase::AllPairs), 0.1));
 }
 
 TEST_CASE("Sweep and prune returns exactly the all-pairs list on the 1000-cube clump",
@@ -147,8 +154,8 @@ TEST_CASE("Sweep and prune returns exactly the all-pairs list on the 1000-cube c
   // At the start the cubes are 1 m apart: no pair at margin 0, and at margin 1 m every cube
   // touches its 26 grid neighbours, 3·900 + 6·810 + 4·729 = 10476 pairs on a 10³ grid.
   CHECK(sweepAndPrunePairs(world, 0.0).empty());
-  CHECK(candidatePairs(world, 0.0, BroadPhase::AllPairs).empty());
-  const Pairs neighbours = candidatePairs(world, 1.0, BroadPhase::AllPairs);
+  CHECK(candidatePairs(withBroadPhase(world, BroadPhase::AllPairs), 0.0).empty());
+  const Pairs neighbours = candidatePairs(withBroadPhase(world, BroadPhase::AllPairs), 1.0);
   CHECK(neighbours.size() == 10476);
   CHECK(sweepAndPrunePairs(world, 1.0) == neighbours);
 
@@ -156,7 +163,8 @@ TEST_CASE("Sweep and prune returns exactly the all-pairs list on the 1000-cube c
     const World collapsed = collapsedClump(1000, t);
     for (double margin : {0.0, 0.1}) {
       INFO("t = " << t << " s, margin " << margin);
-      const Pairs reference = candidatePairs(collapsed, margin, BroadPhase::AllPairs);
+      const Pairs reference =
+          candidatePairs(withBroadPhase(collapsed, BroadPhase::AllPairs), margin);
       CHECK(!reference.empty());
       CHECK(sweepAndPrunePairs(collapsed, margin) == reference);
     }
@@ -172,25 +180,29 @@ TEST_CASE("findContacts and firstIntersectingPair give identical results with bo
     for (double margin : {0.0, 0.1}) {
       INFO("scene " << scene << ", margin " << margin);
       const std::vector<ContactManifold> reference =
-          findContacts(world, margin, BroadPhase::AllPairs);
-      CHECK(sameContacts(findContacts(world, margin, BroadPhase::SweepAndPrune), reference));
+          findContacts(withBroadPhase(world, BroadPhase::AllPairs), margin);
+      CHECK(sameContacts(findContacts(withBroadPhase(world, BroadPhase::SweepAndPrune), margin),
+                         reference));
       scenesWithContacts += reference.empty() ? 0 : 1;
     }
     for (double tolerance : {0.0, 0.01, -0.1}) {
       INFO("scene " << scene << ", tolerance " << tolerance);
-      CHECK(firstIntersectingPair(world, tolerance, BroadPhase::SweepAndPrune) ==
-            firstIntersectingPair(world, tolerance, BroadPhase::AllPairs));
+      CHECK(firstIntersectingPair(withBroadPhase(world, BroadPhase::SweepAndPrune), tolerance) ==
+            firstIntersectingPair(withBroadPhase(world, BroadPhase::AllPairs), tolerance));
     }
   }
   CHECK(scenesWithContacts > 60);
 
   const World clump = collapsedClump(1000, 1.0);
-  const std::vector<ContactManifold> reference = findContacts(clump, 0.0, BroadPhase::AllPairs);
+  const std::vector<ContactManifold> reference =
+      findContacts(withBroadPhase(clump, BroadPhase::AllPairs), 0.0);
   CHECK(reference.size() > 1000);
-  CHECK(sameContacts(findContacts(clump, 0.0, BroadPhase::SweepAndPrune), reference));
-  CHECK(firstIntersectingPair(clump, 0.0, BroadPhase::SweepAndPrune) ==
-        firstIntersectingPair(clump, 0.0, BroadPhase::AllPairs));
-  // The defaults are sweep and prune.
+  CHECK(sameContacts(findContacts(withBroadPhase(clump, BroadPhase::SweepAndPrune), 0.0),
+                     reference));
+  CHECK(firstIntersectingPair(withBroadPhase(clump, BroadPhase::SweepAndPrune), 0.0) ==
+        firstIntersectingPair(withBroadPhase(clump, BroadPhase::AllPairs), 0.0));
+  // A world's default broad phase is sweep and prune.
+  CHECK(clump.broadPhase == BroadPhase::SweepAndPrune);
   CHECK(sameContacts(findContacts(clump), reference));
 }
 
@@ -220,7 +232,7 @@ TEST_CASE("refindContacts after some bodies moved equals findContacts, manifold 
   CHECK_THROWS_AS(refindContacts(world, 0.0, {}, std::vector<char>(1, 0)), std::invalid_argument);
 }
 
-TEST_CASE("Sweep and prune over given bounds equals the all-pairs test on those bounds",
+TEST_CASE("Both broad phases over given bounds equal the all-pairs test on those bounds",
           "[collision][broad_phase]") {
   testing::SeededRandom random(77);
   for (int scene = 0; scene < 60; ++scene) {
@@ -243,10 +255,19 @@ TEST_CASE("Sweep and prune over given bounds equals the all-pairs test on those 
           reference.emplace_back(i, j);
     INFO("scene " << scene);
     CHECK(sweepAndPrunePairs(world, lo, hi, 0.01) == reference);
+    // The world's choice of broad phase over the same bounds: both kinds, the same list.
+    for (BroadPhase kind : {BroadPhase::AllPairs, BroadPhase::SweepAndPrune}) {
+      INFO(broadPhaseName(kind));
+      CHECK(candidatePairs(withBroadPhase(world, kind), lo, hi, 0.01) == reference);
+    }
   }
   const World world = randomScene(random, false, false);
   CHECK_THROWS_AS(sweepAndPrunePairs(world, std::vector<Vec3>(1), std::vector<Vec3>(1), 0.0),
                   std::invalid_argument);
+  for (BroadPhase kind : {BroadPhase::AllPairs, BroadPhase::SweepAndPrune})
+    CHECK_THROWS_AS(candidatePairs(withBroadPhase(world, kind), std::vector<Vec3>(1),
+                                   std::vector<Vec3>(1), 0.0),
+                    std::invalid_argument);
 }
 
 TEST_CASE("separatedBeyond says 'apart' only when the full separating-axis test does",
@@ -298,7 +319,7 @@ TEST_CASE("Sweep and prune matches all pairs when a body's state is not finite",
     world.bodies[i].updateDerived();
   }
   for (double margin : {0.0, 0.1}) {
-    const Pairs reference = candidatePairs(world, margin, BroadPhase::AllPairs);
+    const Pairs reference = candidatePairs(withBroadPhase(world, BroadPhase::AllPairs), margin);
     CHECK(std::count(reference.begin(), reference.end(), std::make_pair(9, 12)) == 1);
     CHECK(sweepAndPrunePairs(world, margin) == reference);
   }

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include "boxsim/io/trajectory.hpp"
@@ -51,6 +52,12 @@ std::string writeScene(const ScratchDir& kDir, const std::string& name, const st
   const fs::path p = kDir / name;
   std::ofstream(p) << text;
   return p.string();
+}
+
+/// The bytes of a file ("" when it cannot be read).
+std::string contentsOf(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
 }  // namespace
@@ -125,7 +132,35 @@ TEST_CASE("An unknown method or a bad time step exits non-zero and writes nothin
   CHECK_THAT(missing.stderrText, Contains("nope.json"));
 }
 
-TEST_CASE("Technique options reach the stepper and its header; options a method lacks are refused",
+TEST_CASE("boxsim run --broad-phase all_pairs writes the default run's file byte for byte, and an "
+          "unknown name exits non-zero and writes nothing",
+          "[cli][input]") {
+  const ScratchDir kDir;
+  // The thesis' pyramid (Fig. 6.6): 145 pairs touching every step.
+  const std::string scene =
+      std::string(BOXSIM_SOURCE_DIR) + "/chapters/impulse_damped/scenes/pyramid10_shot.json";
+  const std::string swept = (kDir / "swept.dat").string();
+  const std::string all = (kDir / "all.dat").string();
+  REQUIRE(runBoxsim(kDir, "run " + scene + " --method damped --duration 1 -q --out " + swept)
+              .status == 0);
+  REQUIRE(runBoxsim(kDir, "run " + scene +
+                              " --method damped --duration 1 -q --broad-phase all_pairs --out " +
+                              all)
+              .status == 0);
+  const std::string sweptText = contentsOf(swept);
+  CHECK(!sweptText.empty());
+  CHECK(sweptText == contentsOf(all));
+
+  const std::string bad = (kDir / "bad.dat").string();
+  const Result r = runBoxsim(kDir, "run " + scene + " --broad-phase octree --out " + bad);
+  CHECK(r.status != 0);
+  CHECK_THAT(r.stderrText, Contains("--broad-phase"));
+  CHECK_THAT(r.stderrText, Contains("octree"));
+  CHECK_FALSE(fs::exists(bad));
+}
+
+TEST_CASE("Technique options reach the stepper and its header, and options a method lacks "
+          "are refused",
           "[cli][input]") {
   const ScratchDir kDir;
   const std::string die = std::string(BOXSIM_SOURCE_DIR) + "/chapters/impulse_damped/scenes/die.json";
@@ -148,7 +183,7 @@ TEST_CASE("Technique options reach the stepper and its header; options a method 
   CHECK_FALSE(fs::exists(refused));
 }
 
-TEST_CASE("boxsim render --colour colours a named body; a bad name or colour exits non-zero",
+TEST_CASE("boxsim render --colour colours a named body, and a bad name or colour exits non-zero",
           "[cli][input][render]") {
   const ScratchDir kDir;
   const std::string traj = (kDir / "die.dat").string();
@@ -195,7 +230,8 @@ TEST_CASE("boxsim run --filter writes the filtered trajectory and names the filt
   CHECK(e.meta.at("envelope_angle") == "0.1 rad");
 }
 
-TEST_CASE("boxsim filter filters a recorded run; bad filter options exit non-zero and write nothing",
+TEST_CASE("boxsim filter filters a recorded run, and bad filter options exit non-zero and "
+          "write nothing",
           "[cli][filtering][input]") {
   const ScratchDir kDir;
   const std::string die = std::string(BOXSIM_SOURCE_DIR) + "/chapters/impulse_damped/scenes/die.json";

@@ -1,17 +1,23 @@
 // Determinism (DESIGN.md): the same scene and parameters give a bit-identical trajectory. Every
 // technique runs the same many-contact scene twice in one process, and every double of every
-// body's state (x, q, P, L) is compared bit for bit after every step. Across builds (Release
-// against Debug), cmake/compare_builds.sh compares the trajectory files of the shipped scenes.
+// body's state (x, q, P, L) is compared bit for bit after every step; then once with each broad
+// phase (World::broadPhase), which must find the same pairs in the same order and so leave the
+// trajectory unchanged to the last bit. Across builds (Release against Debug),
+// cmake/compare_builds.sh compares the trajectory files of the shipped scenes.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cstring>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "boxsim/collision/broad_phase.hpp"
 #include "boxsim/io/scene_builders.hpp"
 #include "boxsim/techniques.hpp"
+#include "boxsim/timewarp/timewarp.hpp"
 #include "test_worlds.hpp"
+#include "workload.hpp"
 
 using namespace boxsim;
 
@@ -31,10 +37,43 @@ World manyContacts() {
   return world;
 }
 
-/// Every double of every body's state after each step, in order.
-std::vector<double> trajectory(const std::string& method, int steps) {
-  World world = manyContacts();
-  const std::unique_ptr<Stepper> stepper = makeStepper(method);
+/// A clump of 5 × 5 × 5 unit cubes 0.2 m apart, its lowest layer 1.7 m above the ground, each
+/// cube moving at 20 m/s downwards besides the clump's own 5 m/s towards its centre. The cubes
+/// move a third of a metre a step, far beyond the gathering's exact reach, so the once-per-step
+/// contact gathering stretches their bounds along their way (its explicit-bounds broad phase)
+/// and moves them to their predicted poses pass by pass; they collide among themselves from the
+/// third step and the bottom layer strikes the ground in the sixth. 125 bodies: past the 64 from
+/// which sweep and prune may pair them through its uniform grid instead of the sweep.
+World fastClump() {
+  World world = testing::groundWorld();
+  ClumpSpec clump;
+  clump.count = 125;
+  clump.spacing = 1.2;
+  clump.center = Vec3(0.0, 4.6, 0.0);
+  addClump(world, clump);
+  for (RigidBody& body : world.bodies)
+    if (!body.immovable) body.setVelocity(body.v + Vec3(0.0, -20.0, 0.0));
+  return world;
+}
+
+/// makeStepper(method), except that the swept timewarp stops a frame after its share of 1000
+/// events (workload.hpp; all 1000, its default, unless BOXSIM_TEST_WORKLOAD asks for less).
+std::unique_ptr<Stepper> stepperOf(const std::string& method) {
+  if (method != timewarpMethodName(TimewarpVariant::Swept)) return makeStepper(method);
+  TimewarpParams params;
+  params.variant = TimewarpVariant::Swept;
+  params.maxEventsPerStep = static_cast<int>(testing::scaledCount(params.maxEventsPerStep));
+  return std::make_unique<TimewarpStepper>(params);
+}
+
+/// Every double of every body's state after each step of `method` on `start` run with the
+/// broad phase `kind`, in order.
+std::vector<double> trajectory(const std::string& method, int steps,
+                               BroadPhase kind = BroadPhase::SweepAndPrune,
+                               const World& start = manyContacts()) {
+  World world = start;
+  world.broadPhase = kind;
+  const std::unique_ptr<Stepper> stepper = stepperOf(method);
   std::vector<double> out;
   for (int k = 0; k < steps; ++k) {
     stepper->step(world, 1.0 / 60.0);
@@ -48,17 +87,23 @@ std::vector<double> trajectory(const std::string& method, int steps) {
   return out;
 }
 
+/// Steps of `method` on manyContacts(): 1 s; the chronological techniques meet their event
+/// limits on the resting pyramid every step, so they run a tenth of it, and the swept timewarp,
+/// whose conservative advancement makes each of its 1000 events a frame dear (2.5 s a frame
+/// here), one frame. BOXSIM_TEST_WORKLOAD scales the counts (workload.hpp).
+int stepsOf(const std::string& method) {
+  const bool chronological = method != "impulse" && method != "damped";
+  return method == "timewarp_swept" ? 1
+                                    : static_cast<int>(testing::scaledCount(chronological ? 6 : 60));
+}
+
 }  // namespace
 
 TEST_CASE("Every technique gives a bit-identical trajectory when run twice on a scene of many "
           "contacts",
           "[techniques][determinism]") {
   for (const std::string& method : methodNames()) {
-    // 1 s; the chronological techniques meet their event limits on the resting pyramid every
-    // step, so they run a tenth of it, and the swept timewarp, whose conservative advancement
-    // makes each of its 1000 events a frame dear (2.5 s a frame here), one frame.
-    const bool chronological = method != "impulse" && method != "damped";
-    const int steps = method == "timewarp_swept" ? 1 : chronological ? 6 : 60;
+    const int steps = stepsOf(method);
     const std::vector<double> first = trajectory(method, steps);
     const std::vector<double> second = trajectory(method, steps);
     INFO(method);
@@ -66,5 +111,37 @@ TEST_CASE("Every technique gives a bit-identical trajectory when run twice on a 
     REQUIRE(!first.empty());
     // memcmp, not ==: -0.0 against 0.0 and NaN against NaN count as different bits.
     CHECK(std::memcmp(first.data(), second.data(), first.size() * sizeof(double)) == 0);
+  }
+}
+
+TEST_CASE("Every technique gives the same trajectory, bit for bit, with the broad phase on "
+          "(sweep and prune) and off (all pairs)",
+          "[techniques][determinism][broad_phase]") {
+  for (const std::string& method : methodNames()) {
+    const int steps = stepsOf(method);
+    const std::vector<double> on = trajectory(method, steps, BroadPhase::SweepAndPrune);
+    const std::vector<double> off = trajectory(method, steps, BroadPhase::AllPairs);
+    INFO(method);
+    REQUIRE(on.size() == off.size());
+    REQUIRE(!on.empty());
+    CHECK(std::memcmp(on.data(), off.data(), on.size() * sizeof(double)) == 0);
+  }
+}
+
+TEST_CASE("Impulse and damped give the same trajectory, bit for bit, with either broad phase on "
+          "a fast clump hitting the ground",
+          "[impulse_damped][determinism][broad_phase]") {
+  const World start = fastClump();
+  for (const std::string& method : {std::string("impulse"), std::string("damped")}) {
+    // 0.5 s: the impacts of the first 0.1 s, then the clump rebounding (restitution 0.9) with
+    // cubes still striking the ground and each other.
+    // At least the 6 steps to the ground under a smaller BOXSIM_TEST_WORKLOAD.
+    const int steps = static_cast<int>(std::max(6L, testing::scaledCount(30)));
+    const std::vector<double> on = trajectory(method, steps, BroadPhase::SweepAndPrune, start);
+    const std::vector<double> off = trajectory(method, steps, BroadPhase::AllPairs, start);
+    INFO(method);
+    REQUIRE(on.size() == off.size());
+    REQUIRE(!on.empty());
+    CHECK(std::memcmp(on.data(), off.data(), on.size() * sizeof(double)) == 0);
   }
 }

@@ -68,6 +68,23 @@ TEST_CASE("Wrong types, unknown builders and empty scenes are rejected", "[io][i
              Contains("/builders/0/base: the scene would hold"));
 }
 
+TEST_CASE("The key broad_phase chooses the world's broad phase, and an unknown name is rejected "
+          "with the valid ones",
+          "[io][input]") {
+  CHECK(parseScene("{\"bodies\": [" + kBody + "]}", "s.json").world.broadPhase ==
+        BroadPhase::SweepAndPrune);
+  CHECK(parseScene("{\"broad_phase\": \"all_pairs\", \"bodies\": [" + kBody + "]}", "s.json")
+            .world.broadPhase == BroadPhase::AllPairs);
+  CHECK(parseScene("{\"broad_phase\": \"sweep_and_prune\", \"bodies\": [" + kBody + "]}",
+                   "s.json")
+            .world.broadPhase == BroadPhase::SweepAndPrune);
+  const std::string e = errorOf("{\"broad_phase\": \"octree\", \"bodies\": [" + kBody + "]}");
+  CHECK_THAT(e, Contains("bad.json: /broad_phase: unknown broad phase \"octree\""));
+  CHECK_THAT(e, Contains("all_pairs") && Contains("sweep_and_prune"));
+  CHECK_THAT(errorOf("{\"broad_phase\": 1, \"bodies\": [" + kBody + "]}"),
+             Contains("/broad_phase: expected a string"));
+}
+
 TEST_CASE("Body names must be unique, the ground's included", "[io][input]") {
   CHECK_THAT(errorOf(R"({"ground": {}, "bodies": [
       {"name": "ground", "half_extents": [0.5,0.5,0.5], "mass": 1, "position": [0, 3, 0]}]})"),
@@ -79,7 +96,8 @@ TEST_CASE("Body names must be unique, the ground's included", "[io][input]") {
              Contains("/bodies/1: the name \"body_1\" is already taken"));
 }
 
-TEST_CASE("Boxes overlapping at the start are named; touching boxes are accepted", "[io][input]") {
+TEST_CASE("Boxes overlapping at the start are named, and touching boxes are accepted",
+          "[io][input]") {
   const std::string e = errorOf(R"({"ground": {}, "bodies": [
       {"name": "a", "half_extents": [0.5,0.5,0.5], "mass": 1, "position": [0, 0.4, 0]}]})");
   CHECK_THAT(e, Contains("/ground and /bodies/0"));

@@ -114,7 +114,7 @@ StepStats advanceColliding(World& world, double dt, const BasicCollidingParams& 
     stats.bodyIntegrations += moving();
     // §2.1 step 2: if two objects intersect, the simulation is stopped.
     const std::pair<int, int> first = firstIntersectingPair(
-        world, params.timeOfImpact.depthTolerance, BroadPhase::SweepAndPrune, hooks.notColliding);
+        world, params.timeOfImpact.depthTolerance, hooks.notColliding);
     if (first.first < 0) break;
     // §2.1 step 3: search backward and forward in time for the collision time (bisection);
     // the search leaves every body rolled back to just before the contact.

@@ -28,7 +28,7 @@ TimeOfImpact findTimeOfImpact(World& world, const WorldState& start, double span
       continue;
     }
     const std::pair<int, int> other =
-        firstIntersectingPair(world, params.depthTolerance, BroadPhase::SweepAndPrune, skip);
+        firstIntersectingPair(world, params.depthTolerance, skip);
     if (other.first >= 0) {
       // §3.3.1: the search uncovered a collision with a third body before the one it was
       // refining; discard the current one and restart the search on the earlier collision.

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "boxsim/cli/commands.hpp"
+#include "boxsim/collision/broad_phase.hpp"
 #include "boxsim/io/scene.hpp"
 #include "boxsim/io/simulate.hpp"
 #include "boxsim/techniques.hpp"
@@ -20,6 +21,7 @@ struct RunArgs {
   std::string contactNormal;  // empty: the method's default
   std::string contactGathering;  // empty: the method's default
   std::string sleep;          // "on", "off" or empty (the method's default)
+  std::string broadPhase;     // empty: the scene's choice
   std::optional<unsigned long> plausibilitySeed;
   double dt = 1.0 / 60.0;
   double duration = 5.0;
@@ -78,6 +80,7 @@ int run(const RunArgs& args) {
   checkedStepCount(args.dt, args.duration, 1);
   validateFilterChoice(args.filter);
   Scene scene = loadScene(args.scene);
+  if (!args.broadPhase.empty()) scene.world.broadPhase = parseBroadPhase(args.broadPhase);
   Recorder recorder(scene.world,
                     runParameters(*stepper, scene.world, args.scene, args.dt, args.duration));
   ProgressBar bar(!args.quiet);
@@ -131,6 +134,12 @@ void addRunCommand(CLI::App& app) {
       ->check(CLI::IsMember({"once_per_step", "every_pass"}));
   cmd->add_option("--sleep", args->sleep, "Sleeping of bodies at rest (damped): on (default), off")
       ->check(CLI::IsMember({"on", "off"}));
+  cmd->add_option("--broad-phase", args->broadPhase,
+                  "How candidate pairs are found, overriding the scene's \"broad_phase\": "
+                  "sweep_and_prune (default) or all_pairs (every pair tested, thesis §4.1); the "
+                  "same pairs either way, so the same trajectory")
+      ->check(CLI::IsMember({broadPhaseName(BroadPhase::AllPairs),
+                             broadPhaseName(BroadPhase::SweepAndPrune)}));
   cmd->add_option("--plausibility-seed", args->plausibilitySeed,
                   "Turn on the random perturbation of fast collisions (damped, thesis §4.2) "
                   "with this seed; the seed is written into the output header");

@@ -4,7 +4,7 @@
 /// two nested loops; sweep and prune (sweep_and_prune.cpp) finds the same pairs by sorting.
 /// Either way pairs come out in increasing (i, j) order: no hashing, no pointer order, so the
 /// narrow phase, and everything after it, sees the same pairs in the same order on every run
-/// and with either broad phase.
+/// and with either broad phase. Which one runs is the world's choice (World::broadPhase).
 #include "boxsim/collision/broad_phase.hpp"
 
 #include <algorithm>
@@ -39,14 +39,12 @@ void obbBounds(const Obb& box, double margin, Vec3& lo, Vec3& hi) {
   hi = box.center + reach;
 }
 
-std::vector<std::pair<int, int>> candidatePairs(const World& world, double margin,
-                                                BroadPhase kind) {
-  if (kind == BroadPhase::SweepAndPrune) return sweepAndPrunePairs(world, margin);
+namespace {
 
+/// The all-pairs broad phase on given bounds: every pair tested, in increasing (i, j) order.
+std::vector<std::pair<int, int>> allPairs(const World& world, const std::vector<Vec3>& lo,
+                                          const std::vector<Vec3>& hi, double margin) {
   const int n = static_cast<int>(world.bodies.size());
-  std::vector<Vec3> lo(n), hi(n);
-  for (int i = 0; i < n; ++i) obbBounds(Obb::of(world.bodies[i]), 0.0, lo[i], hi[i]);
-
   std::vector<std::pair<int, int>> pairs;
   for (int i = 0; i < n; ++i) {
     for (int j = i + 1; j < n; ++j) {
@@ -58,9 +56,27 @@ std::vector<std::pair<int, int>> candidatePairs(const World& world, double margi
   return pairs;
 }
 
-std::vector<ContactManifold> findContacts(const World& world, double margin,
-                                          BroadPhase kind) {
-  const std::vector<std::pair<int, int>> pairs = candidatePairs(world, margin, kind);
+}  // namespace
+
+std::vector<std::pair<int, int>> candidatePairs(const World& world, double margin) {
+  if (world.broadPhase == BroadPhase::SweepAndPrune) return sweepAndPrunePairs(world, margin);
+  const int n = static_cast<int>(world.bodies.size());
+  std::vector<Vec3> lo(n), hi(n);
+  for (int i = 0; i < n; ++i) obbBounds(Obb::of(world.bodies[i]), 0.0, lo[i], hi[i]);
+  return allPairs(world, lo, hi, margin);
+}
+
+std::vector<std::pair<int, int>> candidatePairs(const World& world, const std::vector<Vec3>& lo,
+                                                const std::vector<Vec3>& hi, double margin) {
+  if (world.broadPhase == BroadPhase::SweepAndPrune)
+    return sweepAndPrunePairs(world, lo, hi, margin);
+  if (lo.size() != world.bodies.size() || hi.size() != world.bodies.size())
+    throw std::invalid_argument("candidatePairs: give one pair of bounds per body");
+  return allPairs(world, lo, hi, margin);
+}
+
+std::vector<ContactManifold> findContacts(const World& world, double margin) {
+  const std::vector<std::pair<int, int>> pairs = candidatePairs(world, margin);
   // Room for every candidate at once: in the scenes that make this costly, stacks at rest,
   // nearly every candidate touches, and growing the vector step by step would copy each
   // manifold several times.
@@ -81,9 +97,9 @@ bool pairIntersects(const World& world, int i, int j, double tolerance) {
 }
 
 std::pair<int, int> firstIntersectingPair(const World& world, double tolerance,
-                                          BroadPhase kind, const PairFilter& skip) {
+                                          const PairFilter& skip) {
   // A negative tolerance asks about boxes closer than -tolerance, so widen the reject to match.
-  for (const std::pair<int, int>& p : candidatePairs(world, std::max(0.0, -tolerance), kind))
+  for (const std::pair<int, int>& p : candidatePairs(world, std::max(0.0, -tolerance)))
     if (pairIntersects(world, p.first, p.second, tolerance) &&
         !(skip && skip(world, p.first, p.second)))
       return p;

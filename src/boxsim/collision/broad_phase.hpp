@@ -3,6 +3,7 @@
 /// subdivision for its small scenes and names it a necessity for larger ones. Two broad
 /// phases give the same pairs in the same fixed order: the thesis' all-pairs test with an
 /// axis-aligned bounding box reject, and sweep and prune (sweep_and_prune.hpp), the default.
+/// The world chooses (World::broadPhase, a BroadPhase); every query here follows its choice.
 #pragma once
 
 #include <functional>
@@ -14,15 +15,6 @@
 #include "boxsim/core/world.hpp"
 
 namespace boxsim {
-
-/// Which broad phase finds the candidate pairs. Both return the same list in the same order,
-/// so the choice changes only speed, never a trajectory.
-enum class BroadPhase {
-  /// Every pair tested, O(n²) for n bodies: what \thesis{§4.1} did for its small scenes.
-  AllPairs,
-  /// Sort and sweep along one axis, O(n log n + k) for k pairs (sweepAndPrunePairs).
-  SweepAndPrune,
-};
 
 /// The name of a broad phase in scene files and on the command line: "all_pairs" or
 /// "sweep_and_prune".
@@ -49,24 +41,33 @@ inline bool boundsWithin(const Vec3& loA, const Vec3& hiA, const Vec3& loB, cons
 }
 
 /// All index pairs (i, j), i < j, not both immovable, whose bounds (obbBounds with margin 0)
-/// pass boundsWithin(margin) (m), in increasing (i, j) order. Deterministic and independent
-/// of `kind`: AllPairs runs nested loops over body indices in O(n²); SweepAndPrune
-/// (sweepAndPrunePairs) sorts in O(n log n + k) for k pairs and returns the same list.
-std::vector<std::pair<int, int>> candidatePairs(const World& world, double margin = 0.0,
-                                                BroadPhase kind = BroadPhase::SweepAndPrune);
+/// pass boundsWithin(margin) (m), in increasing (i, j) order, found by world.broadPhase.
+/// Deterministic and the same list whichever broad phase the world names: AllPairs runs nested
+/// loops over body indices in O(n²); SweepAndPrune (sweepAndPrunePairs) sorts in
+/// O(n log n + k) for k pairs and returns the same list.
+std::vector<std::pair<int, int>> candidatePairs(const World& world, double margin = 0.0);
+
+/// candidatePairs with the bounds given: body i's world axis-aligned bounds are [lo[i], hi[i]]
+/// (m), whatever they enclose (a body stretched along its motion, say). All index pairs (i, j),
+/// i < j, not both immovable, with boundsWithin(lo[i], hi[i], lo[j], hi[j], margin), in
+/// increasing (i, j) order, found by world.broadPhase: nested loops for AllPairs,
+/// sweepAndPrunePairs(world, lo, hi, margin) for SweepAndPrune; the same list either way.
+/// \throws std::invalid_argument unless lo and hi hold one entry per body
+std::vector<std::pair<int, int>> candidatePairs(const World& world, const std::vector<Vec3>& lo,
+                                                const std::vector<Vec3>& hi, double margin);
 
 /// Every pair of bodies whose manifold has at least one point (depth > -margin, m), with a and
 /// b filled in, in increasing (a, b) order: collideBoxes on each of candidatePairs(world,
-/// margin, kind). The result does not depend on `kind`. \thesis{§3.2}
-std::vector<ContactManifold> findContacts(const World& world, double margin = 0.0,
-                                          BroadPhase kind = BroadPhase::SweepAndPrune);
+/// margin). The result does not depend on world.broadPhase. \thesis{§3.2}
+std::vector<ContactManifold> findContacts(const World& world, double margin = 0.0);
 
 /// findContacts(world, margin) after only some bodies moved: `before` is what findContacts
 /// returned with the same margin when every body stood where it stands now except those with
 /// moved[i] != 0. The pairs of two bodies that did not move keep their manifolds (the same
 /// poses give the same manifold, bit for bit); the broad and narrow phase run again for the
-/// pairs with a moved body. The same list as findContacts(world, margin), element for element,
-/// for the cost of a broad phase and the narrow phases of the moved bodies' pairs.
+/// pairs with a moved body (found by world.broadPhase). The same list as findContacts(world,
+/// margin), element for element, for the cost of a broad phase and the narrow phases of the
+/// moved bodies' pairs.
 /// \param moved  one entry per body
 /// \throws std::invalid_argument unless moved has one entry per body
 std::vector<ContactManifold> refindContacts(const World& world, double margin,
@@ -74,6 +75,8 @@ std::vector<ContactManifold> refindContacts(const World& world, double margin,
                                             const std::vector<char>& moved);
 
 /// The deepest overlap of any pair of bodies (separating-axis depth), m; 0 when none overlaps.
+/// Pairs come from candidatePairs(world), so from world.broadPhase; the result does not depend
+/// on it.
 /// A measure for tests and figures (how far a technique lets boxes interpenetrate).
 double deepestPenetration(const World& world);
 
@@ -85,9 +88,9 @@ using PairFilter = std::function<bool(const World& world, int i, int j)>;
 
 /// The first pair (in candidatePairs order) whose separating-axis depth exceeds `tolerance`
 /// (m) and that `skip` (when set) does not skip, or (-1, -1) when none does. A negative
-/// tolerance also reports pairs closer than -tolerance. The result does not depend on `kind`.
+/// tolerance also reports pairs closer than -tolerance. The pairs come from candidatePairs, so
+/// from world.broadPhase; the result does not depend on it.
 std::pair<int, int> firstIntersectingPair(const World& world, double tolerance,
-                                          BroadPhase kind = BroadPhase::SweepAndPrune,
                                           const PairFilter& skip = {});
 
 }  // namespace boxsim

@@ -13,7 +13,7 @@
 
 namespace boxsim {
 
-/// The candidate pairs of candidatePairs(world, margin, BroadPhase::AllPairs), found by
+/// The candidate pairs of candidatePairs(world, margin) for BroadPhase::AllPairs, found by
 /// sorting instead of testing every pair: all index pairs (i, j), i < j, not both immovable,
 /// whose axis-aligned bounds (obbBounds with margin 0) are at most `margin` (m) apart along
 /// every world axis (touching bounds count), in increasing (i, j) order. The same list,

@@ -1,7 +1,8 @@
 /// \file
-/// The world: bodies (the ground among them, as an immovable box), gravity, and the global
-/// coefficient of restitution. Saving and restoring the whole state is the roll-back the
-/// basic colliding technique needs (\thesis{§2.1}).
+/// The world: bodies (the ground among them, as an immovable box), gravity, the global
+/// coefficient of restitution and the broad phase that finds candidate pairs. Saving and
+/// restoring the whole state is the roll-back the basic colliding technique needs
+/// (\thesis{§2.1}).
 #pragma once
 
 #include <string>
@@ -29,8 +30,20 @@ struct Launch {
   bool done = false;                    ///< set once launched
 };
 
-/// Bodies, gravity and global material constants. Body indices are stable: a body's index is
-/// its identity everywhere (contacts, recorder columns, output files).
+/// Which broad phase finds the candidate pairs of the narrow phase (collision/broad_phase.hpp,
+/// whose broadPhaseName and parseBroadPhase give the names "all_pairs" and "sweep_and_prune").
+/// Both return the same pairs in the same order, so the choice changes only speed, never a
+/// trajectory. \thesis{§4.1}
+enum class BroadPhase {
+  /// Every pair tested, O(n²) for n bodies: what \thesis{§4.1} did for its small scenes.
+  AllPairs,
+  /// Sort and sweep along one axis (or a uniform grid for many bodies), O(n log n + k) for k
+  /// pairs (sweepAndPrunePairs in collision/sweep_and_prune.hpp).
+  SweepAndPrune,
+};
+
+/// Bodies, gravity, global material constants and the broad phase. Body indices are stable: a
+/// body's index is its identity everywhere (contacts, recorder columns, output files).
 class World {
  public:
   std::vector<RigidBody> bodies;      ///< all bodies, movable and immovable
@@ -40,6 +53,13 @@ class World {
   double restitution = 0.9;
   /// Index of the ground body, or -1 when the scene has none.
   int groundIndex = -1;
+  /// The broad phase every query on this world uses (candidatePairs, findContacts,
+  /// refindContacts, firstIntersectingPair, deepestPenetration, the impulse techniques' contact
+  /// gathering), as a collision world owns its broad phase in established engines (Bullet's
+  /// btCollisionWorld takes a btBroadphaseInterface). Sweep and prune by default; all pairs is
+  /// the thesis' own test and the reference the sweep is checked against. Not part of
+  /// WorldState: saving and restoring keep it.
+  BroadPhase broadPhase = BroadPhase::SweepAndPrune;
 
   /// Bodies waiting to be launched, in the order they were added.
   std::vector<Launch> launches;

@@ -10,7 +10,6 @@
 
 #include "boxsim/collision/broad_phase.hpp"
 #include "boxsim/collision/contact_manifold.hpp"
-#include "boxsim/collision/sweep_and_prune.hpp"
 
 namespace boxsim {
 
@@ -144,7 +143,7 @@ void ContactGathering::sweepCandidates(const World& world, const Vec3& gravitySt
   for (std::size_t i = 0; i < n; ++i) setGuard(world, static_cast<int>(i), gravityStep, dt);
   candidates_.clear();
   hasCandidate_.assign(n, 0);
-  for (const auto& [i, j] : sweepAndPrunePairs(world, guardLo_, guardHi_, margin)) {
+  for (const auto& [i, j] : candidatePairs(world, guardLo_, guardHi_, margin)) {
     candidates_.push_back(Candidate{i, j, SeparatingAxisResult{}, false});
     hasCandidate_[i] = hasCandidate_[j] = 1;
   }
@@ -215,8 +214,8 @@ void ContactGathering::buildCache(const World& world, const Vec3& gravityStep, d
   }
   sweepCandidates(world, gravityStep, dt, margin);
   // One narrow phase at the current poses for the slow pairs, each body widened by more than a
-  // slow body can move (slowWidening >= exactReach): the pairs sweepAndPrunePairs(world,
-  // margin, widening) gives, picked from the candidates (whose growth is at least the
+  // slow body can move (slowWidening >= exactReach): the pairs the broad phase
+  // gives with margin and widening, picked from the candidates (whose growth is at least the
   // widening) by the sweep's own test.
   pairs_.clear();
   for (const Candidate& candidate : candidates_) {
@@ -360,7 +359,7 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
     obbBounds(Obb::of(body), 0.0, predictedLo_[i], predictedHi_[i]);
   }
   // A.2 L3 for the pairs with a fast body: the broad and narrow phase where the bodies now
-  // stand, as written. The broad phase is sweepAndPrunePairs' own test on the candidates, so
+  // stand, as written. The broad phase is the broad phases' own test (boundsWithin) on the candidates, so
   // it keeps the pairs a sweep at these poses would find, in the same (a, b) order, which is
   // the cache's order too, so the two lists merge into one.
   partner_.assign(n, 0);

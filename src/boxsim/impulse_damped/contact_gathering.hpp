@@ -19,18 +19,18 @@
 ///     default exactReach. A contact joins the pass when one of its points has
 ///     depth' > -margin, the criterion of EveryPass; its point is the mean of those points.
 ///   - Pairs with a fast body: as written. Fast bodies move to their predicted poses and a broad
-///     and narrow phase at those poses finds their contacts, every pass. The broad phase of a
-///     pass returns what sweepAndPrunePairs would at those poses, found faster: one sweep per
-///     step, with every movable body's bounds stretched along its way in a pass (kGuardFactor
-///     times it, grown sideways a little, and at least by the slow widening), lists the pairs
-///     that can come near in the step; each pass applies the broad phase's own test
-///     (boundsWithin at the pass' poses) to that list alone. A body whose predicted bounds
-///     would leave its stretched ones (an impulse turned or sped it up) gets new ones and is
-///     tested against every body (or, when many leave theirs at once, the sweep is redone). A
-///     fast body in no candidate pair touches nothing in the step, so it is not moved at all.
-///     The narrow phase of a pair that was apart in its last pass first looks along the axis
-///     that separated it (separatedBeyond), which decides most pairs of a flying clump with one
-///     axis instead of fifteen, and always as the full test would.
+///     and narrow phase at those poses finds their contacts, every pass. The broad phase of a pass
+///     returns what the world's broad phase (candidatePairs) would at those poses, found faster:
+///     one broad phase per step, over every movable body's bounds stretched along its way in a pass
+///     (kGuardFactor times it, grown sideways a little, and at least by the slow widening), lists
+///     the pairs that can come near in the step; each pass applies the broad phase's own test
+///     (boundsWithin at the pass' poses) to that list alone. A body whose predicted bounds would
+///     leave its stretched ones (an impulse turned or sped it up) gets new ones and is tested
+///     against every body (or, when many leave theirs at once, the broad phase is redone). A fast
+///     body in no candidate pair touches nothing in the step, so it is not moved at all. The narrow
+///     phase of a pair that was apart in its last pass first looks along the axis that separated it
+///     (separatedBeyond), which decides most pairs of a flying clump with one axis instead of
+///     fifteen, and always as the full test would.
 ///   - A fast body's slow partners: every slow body whose bounds come within the margin plus its
 ///     own reach in the pass of a moved fast body's moves to its predicted pose too, so the narrow
 ///     phase of the pair sees both bodies where \alg{A.2} puts them and finds the contact EveryPass

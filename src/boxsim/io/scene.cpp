@@ -398,7 +398,8 @@ Scene parseScene(const std::string& text, const std::string& source) {
   scene.source = source;
   const Node top(root, "", scene.source);
   top.requireObject("a scene");
-  top.allowKeys({"description", "gravity", "restitution", "ground", "bodies", "builders"});
+  top.allowKeys(
+      {"description", "gravity", "restitution", "broad_phase", "ground", "bodies", "builders"});
   if (top.has("description")) scene.description = top.at("description").string();
   if (top.has("gravity")) scene.world.gravity = top.at("gravity").vec3(kGravityRange);
   if (top.has("restitution")) {
@@ -406,6 +407,17 @@ Scene parseScene(const std::string& text, const std::string& source) {
     scene.world.restitution = e.number();
     if (scene.world.restitution < 0.0 || scene.world.restitution > 1.0)
       e.fail("restitution must lie in [0, 1]", "use 0.9 as the thesis (§3.3.2)");
+  }
+  if (top.has("broad_phase")) {
+    const Node b = top.at("broad_phase");
+    const std::string name = b.string();
+    const std::string valid = broadPhaseName(BroadPhase::AllPairs) + ", " +
+                              broadPhaseName(BroadPhase::SweepAndPrune);
+    try {
+      scene.world.broadPhase = parseBroadPhase(name);
+    } catch (const std::invalid_argument&) {
+      b.fail("unknown broad phase \"" + name + "\"", "use one of: " + valid);
+    }
   }
   std::set<std::string> names;
   if (top.has("ground")) {

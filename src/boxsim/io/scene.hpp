@@ -1,5 +1,6 @@
 /// \file
-/// Scene files: JSON describing the ground, gravity, restitution, bodies and named builders.
+/// Scene files: JSON describing the ground, gravity, restitution, the broad phase, bodies and
+/// named builders.
 /// The schema is documented in docs/scene_format.md; every error names the file, the line and
 /// column (malformed JSON) or the JSON path (bad values), and what to change.
 #pragma once
@@ -20,7 +21,7 @@ class SceneError : public std::runtime_error {
 
 /// A loaded scene: the world and where each body came from.
 struct Scene {
-  World world;  ///< the bodies, gravity and restitution the scene describes
+  World world;  ///< the bodies, gravity, restitution and broad phase the scene describes
   std::string source;       ///< file name (or the name given to parseScene)
   std::string description;  ///< the scene's "description", if any
   /// For each body of world, the JSON path it came from ("/bodies/0", "/builders/1 (tower
@@ -35,7 +36,8 @@ struct Scene {
 /// (masses in [1e-6, 1e6] kg; half extents, cube sizes, spacings and ground sizes in
 /// [1e-6, 1e6] m; coordinates and gaps, speeds, angular speeds and gravity of magnitude at
 /// most 1e6 m, m/s, rad/s and m/s²); quaternions non-zero; names free of white space and
-/// unique; no two boxes overlapping at the start (touching is allowed). Throws SceneError.
+/// unique; "broad_phase", when given, "all_pairs" or "sweep_and_prune" (the default); no two
+/// boxes overlapping at the start (touching is allowed). Throws SceneError.
 Scene parseScene(const std::string& text, const std::string& source);
 
 /// Reads and parses a scene file; throws SceneError (also when the file cannot be read).

@@ -180,25 +180,20 @@ class Frame {
   }
 
   /// findAllCollisions (\alg{A.1} L5): the pairs whose bounds (test states, or swept bounds)
-  /// overlap, found by sorting on the low x bound and sweeping, then each pair's collision.
+  /// overlap, found by the world's broad phase over those bounds (candidatePairs: sweep and
+  /// prune or all pairs, the same pairs in the same order), then each pair's collision.
   void findAllCollisions() {
     const int n = static_cast<int>(world_.bodies.size());
-    std::vector<Bounds> bounds;
-    for (int k = 0; k < n; ++k)
-      bounds.push_back(params_.variant == TimewarpVariant::Swept ? sweptBounds(k)
-                                                                 : boundsOf(test_[k]));
-    std::vector<int> order(n);
-    for (int k = 0; k < n; ++k) order[k] = k;
-    std::sort(order.begin(), order.end(), [&](int p, int q) {
-      return std::tie(bounds[p].low.x(), p) < std::tie(bounds[q].low.x(), q);
-    });
-    std::vector<std::pair<int, int>> pairs;
-    for (int i = 0; i < n; ++i)
-      for (int j = i + 1; j < n && bounds[order[j]].low.x() <= bounds[order[i]].high.x(); ++j)
-        if (bounds[order[i]].overlaps(bounds[order[j]]))
-          pairs.emplace_back(std::min(order[i], order[j]), std::max(order[i], order[j]));
-    std::sort(pairs.begin(), pairs.end());  // pair order, whatever the sort on x did
-    for (const auto& [a, b] : pairs)
+    std::vector<Vec3> lo(n), hi(n);
+    for (int k = 0; k < n; ++k) {
+      const Bounds b =
+          params_.variant == TimewarpVariant::Swept ? sweptBounds(k) : boundsOf(test_[k]);
+      lo[k] = b.low;
+      hi[k] = b.high;
+    }
+    // boundsWithin with margin 0 is Bounds::overlaps; the pairs of two immovable bodies it
+    // leaves out have no collision (collisionOf).
+    for (const auto& [a, b] : candidatePairs(world_, lo, hi, 0.0))
       if (const auto c = collisionOf(a, b)) heap_.insert(*c);
   }
 
