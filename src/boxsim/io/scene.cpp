@@ -314,7 +314,8 @@ void readBuilder(const Node& node, Scene& scene, std::set<std::string>& names) {
     // the body index appended so that every name stays unique.
     std::string& name = scene.world.names[i];
     if (!names.insert(name).second) {
-      name += "_" + std::to_string(i);
+      name += '_';  // not "_" + ...: GCC 12 -O3 warns falsely on that (-Wstringop-overflow)
+      name += std::to_string(i);
       names.insert(name);
     }
     scene.origins.push_back(node.path() + " (" + type + " box " + std::to_string(i - before) + ")");
