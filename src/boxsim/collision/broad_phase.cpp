@@ -59,11 +59,10 @@ std::vector<std::pair<int, int>> allPairs(const World& world, const std::vector<
 }  // namespace
 
 std::vector<std::pair<int, int>> candidatePairs(const World& world, double margin) {
-  if (world.broadPhase == BroadPhase::SweepAndPrune) return sweepAndPrunePairs(world, margin);
   const int n = static_cast<int>(world.bodies.size());
   std::vector<Vec3> lo(n), hi(n);
   for (int i = 0; i < n; ++i) obbBounds(Obb::of(world.bodies[i]), 0.0, lo[i], hi[i]);
-  return allPairs(world, lo, hi, margin);
+  return candidatePairs(world, lo, hi, margin);
 }
 
 std::vector<std::pair<int, int>> candidatePairs(const World& world, const std::vector<Vec3>& lo,

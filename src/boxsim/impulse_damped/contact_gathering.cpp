@@ -100,6 +100,12 @@ constexpr double kGuardSideways = 1.0;
 /// Relative slack for rounding (obbBounds at two poses round differently, by a few ulp of the
 /// coordinates), times the size of the coordinates plus one metre.
 constexpr double kGuardRoundingSlack = 1e-9;
+
+/// The rounding allowance of a bounds test on a body at x with half diagonal ρ (m): bounds
+/// computed at two poses differ from the exact motion by rounding of order |x| + ρ.
+double roundingSlack(const RigidBody& body, double halfDiagonal) {
+  return kGuardRoundingSlack * (1.0 + body.s.x.cwiseAbs().maxCoeff() + halfDiagonal);
+}
 /// Up to this many bodies outgrowing their bounds in a pass are each tested against every
 /// body (O(n) apiece); more, and the whole sweep is redone.
 constexpr std::size_t kMaxDirectlyGrown = 128;
@@ -126,8 +132,7 @@ bool ContactGathering::withinGuard(const RigidBody& body, int i, const Vec3& dis
                                    double turn) const {
   // At the predicted pose the bounds are the current ones moved by the displacement and, as a
   // corner moves at most |ω| Δt ρ when the body turns, grown by at most that, up to rounding.
-  const double slack =
-      turn + kGuardRoundingSlack * (1.0 + body.s.x.cwiseAbs().maxCoeff() + halfDiagonal_[i]);
+  const double slack = turn + roundingSlack(body, halfDiagonal_[i]);
   for (int k = 0; k < 3; ++k)
     if (!(lo_[i][k] + displacement[k] - slack >= guardLo_[i][k] &&
           hi_[i][k] + displacement[k] + slack <= guardHi_[i][k]))
@@ -340,9 +345,8 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
   // its growth; one that outgrew it needs its pairs found afresh, from the poses the bodies
   // stand at.
   if (!outgrown.empty()) growCandidates(world, gravityStep, dt, margin, outgrown);
-  // Bounds where each body stands in this pass: the current ones until a body moves.
-  predictedLo_ = lo_;
-  predictedHi_ = hi_;
+  predictedLo_.resize(n);
+  predictedHi_.resize(n);
   bool anyFast = false;
   for (int i : fast) {
     RigidBody& body = world.bodies[i];
@@ -359,9 +363,9 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
     obbBounds(Obb::of(body), 0.0, predictedLo_[i], predictedHi_[i]);
   }
   // A.2 L3 for the pairs with a fast body: the broad and narrow phase where the bodies now
-  // stand, as written. The broad phase is the broad phases' own test (boundsWithin) on the candidates, so
-  // it keeps the pairs a sweep at these poses would find, in the same (a, b) order, which is
-  // the cache's order too, so the two lists merge into one.
+  // stand, as written. The broad phase is the broad phases' own test (boundsWithin) on the
+  // candidates, so it keeps the pairs a sweep at these poses would find, in the same (a, b)
+  // order, which is the cache's order too, so the two lists merge into one.
   partner_.assign(n, 0);
   partners_.clear();
   fastContacts_.clear();
@@ -379,10 +383,8 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
         const int i = moved_[a] ? a : b, j = moved_[a] ? b : a;
         RigidBody& body = world.bodies[j];
         if (!body.immovable && !partner_[j]) {
-          const double slack =
-              kGuardRoundingSlack * (1.0 + body.s.x.cwiseAbs().maxCoeff() + halfDiagonal_[j]);
           if (boundsWithin(predictedLo_[i], predictedHi_[i], lo_[j], hi_[j],
-                           margin + passReach_[j] + slack)) {
+                           margin + passReach_[j] + roundingSlack(body, halfDiagonal_[j]))) {
             partner_[j] = 1;
             partners_.push_back(j);
             saved_[j] = SavedPose{body.s.x, body.s.q, body.R, body.Iinv, false};
@@ -391,8 +393,13 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
           }
         }
       }
-      if (boundsWithin(predictedLo_[a], predictedHi_[a], predictedLo_[b], predictedHi_[b],
-                       margin) &&
+      // Bounds where each body stands in this pass: predicted once it moved, current before.
+      const bool predictedA = moved_[a] || partner_[a], predictedB = moved_[b] || partner_[b];
+      const Vec3& loA = predictedA ? predictedLo_[a] : lo_[a];
+      const Vec3& hiA = predictedA ? predictedHi_[a] : hi_[a];
+      const Vec3& loB = predictedB ? predictedLo_[b] : lo_[b];
+      const Vec3& hiB = predictedB ? predictedHi_[b] : hi_[b];
+      if (boundsWithin(loA, hiA, loB, hiB, margin) &&
           candidateContact(world, k, margin, c))
         fastContacts_.push_back(c);
     }
