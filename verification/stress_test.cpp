@@ -224,3 +224,21 @@ TEST_CASE("A fast-spinning thin plate striking the ground does not leave with mo
     CHECK(outcome.steps == scene.steps);
   }
 }
+
+// Regression (random stress, damped, Δt = 0.1 s): FIXCONTACTCONSTRAINTS stopped nudging a body
+// after 0.1 ℓ, less than the g Δt² = 9.8 cm one step of fall moves it at this Δt. In seed 11943
+// a 13 cm plank under a pile of up to 382 kg sank 15 cm into the ground a little every step; in
+// seeds 16376 and 24094 a fast box driven into the ground was lifted only 0.1 ℓ a step and sank
+// on. The lift may now reach what the step can have carried the body in (fixLiftLimit).
+TEST_CASE("At a large step a body driven into the ground is lifted back out",
+          "[impulse_damped][stress][regression]") {
+  for (const unsigned long seed : {11943ul, 16376ul, 24094ul}) {
+    const RandomScene scene = randomScene(seed, affordableSpec("damped"));
+    REQUIRE(scene.dt == Approx(0.1));
+    DampedIntegrationStepper stepper;
+    const StressOutcome outcome = runStressChecks(scene, stepper);
+    INFO(scene.describe() << ", deepest under the ground " << outcome.deepestBelowGround << " m");
+    CHECK(outcome.failure == "");
+    CHECK(outcome.steps == scene.steps);
+  }
+}
