@@ -7,12 +7,20 @@ double relativeNormalVelocity(const RigidBody& a, const RigidBody& b, const Vec3
   return n.dot(b.pointVelocity(p) - a.pointVelocity(p));
 }
 
+double relativeNormalVelocity(const RigidBody& a, const RigidBody& b, const Vec3& ra,
+                              const Vec3& rb, const Vec3& n) {
+  return n.dot((b.v + b.omega.cross(rb)) - (a.v + a.omega.cross(ra)));
+}
+
 double applyNewtonianImpulse(RigidBody& a, RigidBody& b, const Vec3& p, const Vec3& n,
                              double restitution) {
-  const double vMinus = relativeNormalVelocity(a, b, p, n);
+  return applyNewtonianImpulse(a, b, Vec3(p - a.s.x), Vec3(p - b.s.x), n, restitution);
+}
+
+double applyNewtonianImpulse(RigidBody& a, RigidBody& b, const Vec3& ra, const Vec3& rb,
+                             const Vec3& n, double restitution) {
+  const double vMinus = relativeNormalVelocity(a, b, ra, rb, n);
   if (vMinus >= 0.0) return 0.0;
-  const Vec3 ra = p - a.s.x;
-  const Vec3 rb = p - b.s.x;
   const double denominator = a.invMass + b.invMass + rotationalInverseMass(a.Iinv, ra, n) +
                              rotationalInverseMass(b.Iinv, rb, n);
   if (denominator <= 0.0) return 0.0;

@@ -13,6 +13,13 @@ namespace boxsim {
 double relativeNormalVelocity(const RigidBody& a, const RigidBody& b, const Vec3& p,
                               const Vec3& n);
 
+/// Relative normal velocity, m/s, of the material points of a and b at the lever arms ra and
+/// rb (m, from each centre of mass): n · ((v_b + ω_b × r_b) - (v_a + ω_a × r_a)). With
+/// r = p - x it is the one-point form above; separate lever arms name a contact found at other
+/// poses than the bodies stand at now (impulse_damped/contact_gathering.hpp).
+double relativeNormalVelocity(const RigidBody& a, const RigidBody& b, const Vec3& ra,
+                              const Vec3& rb, const Vec3& n);
+
 /// The rotational part of a body's inverse mass at a contact: n · ((I⁻¹ (r × n)) × r), 1/kg,
 /// for a point at offset r (m) from the centre of mass and unit normal n. Added to 1/m it is
 /// the normal velocity change of that material point per unit normal impulse.
@@ -34,5 +41,15 @@ inline double rotationalInverseMass(const Mat3& Iinv, const Vec3& r, const Vec3&
 ///         immovable. b receives +j n, a receives -j n.
 double applyNewtonianImpulse(RigidBody& a, RigidBody& b, const Vec3& p, const Vec3& n,
                              double restitution);
+
+/// The same impulse with a lever arm per body: a receives -j n at x_a + ra, b receives +j n at
+/// x_b + rb (ra, rb in m), and j makes the relative normal velocity of those two material points
+/// -restitution times what it was. As each body's velocity change is measured at the point its
+/// impulse acts on, the kinetic energy ½ P·v + ½ L·ω of the pair changes by
+/// ½ j (1 - e) v⁻ <= 0 for e in [-1, 1], whatever the lever arms: an impulse never adds energy.
+/// The one-point form is this with r_{a,b} = p - x_{a,b}, bit for bit.
+/// \return j >= 0, N s, as above.
+double applyNewtonianImpulse(RigidBody& a, RigidBody& b, const Vec3& ra, const Vec3& rb,
+                             const Vec3& n, double restitution);
 
 }  // namespace boxsim

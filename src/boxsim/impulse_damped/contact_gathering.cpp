@@ -286,6 +286,8 @@ bool ContactGathering::predictedContact(const World& world, const CachedPair& pa
   contact = pair.contact;
   contact.point = sum / static_cast<double>(kept);
   contact.depth = deepest;
+  contact.ra = contact.point - a.s.x;
+  contact.rb = contact.point - b.s.x;
   return true;
 }
 
@@ -312,8 +314,10 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
   if (params_.gathering == ContactGatheringMode::EveryPass) {
     // A.2 L2: integrateObjectPositions, remembering where every body was; L3: gatherCollisions.
     saved_ = predictPositions(world, dt, gravityStep);
-    moved_.assign(world.bodies.size(), 1);
     contacts_ = normals_.contactsOf(world, findContacts(world, margin));
+    // DEVIATION(A.2 RESOLVECOLLISIONS/RESOLVECONTACTS L6): revertToOriginalPositions comes
+    // before COLLIDE (see the file comment, "Where COLLIDE acts").
+    revertPositions(world, saved_);
     return contacts_;
   }
   // DEVIATION(A.2 L2-L3): the prediction of the file comment.
@@ -403,9 +407,13 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
           candidateContact(world, k, margin, c))
         fastContacts_.push_back(c);
     }
-  // The partners go back (their velocities recomputed exactly as they were): the slow pairs'
-  // prediction below and COLLIDE see every slow body where it stands.
+  // DEVIATION(A.2 L6): every body goes back before COLLIDE, the fast ones too, with its
+  // velocities recomputed exactly as they were: the slow pairs' prediction below and COLLIDE see
+  // every body where it stands, and each fast contact keeps the lever arms it was found with
+  // (the file comment, "Where COLLIDE acts").
   for (int j : partners_) restorePose(world.bodies[j], saved_[j]);
+  for (int i : fast)
+    if (moved_[i]) restorePose(world.bodies[i], saved_[i]);
   contacts_.clear();
   std::size_t f = 0;
   const auto keyOf = [](const ImpulseContact& contact) {
@@ -451,10 +459,9 @@ bool ContactGathering::candidateContact(const World& world, std::size_t k, doubl
   return contactOf(world, candidate.a, candidate.b, std::move(m), contact);
 }
 
-void ContactGathering::end(World& world) {
-  // A.2 L6: revertToOriginalPositions; the momenta the impulses changed stay.
-  for (std::size_t i = 0; i < moved_.size() && i < world.bodies.size(); ++i)
-    if (moved_[i] && !world.bodies[i].immovable) restorePose(world.bodies[i], saved_[i]);
+void ContactGathering::end(World&) {
+  // A.2 L6, revertToOriginalPositions, already happened in begin(); the momenta the impulses
+  // changed stay.
   moved_.clear();
 }
 

@@ -54,9 +54,32 @@
 ///   their predicted poses. The cache is rebuilt when a body's mobility changes (a sleeping
 ///   body wakes, \thesis{§4.5}) and every step. A fast body's slow partner is moved only for
 ///   the narrow phase of its pairs with fast bodies. What differs from EveryPass: a slow pair's
-///   depth by the rotation error above; the lever arm of an impulse on a slow body (also one
-///   from a fast partner) by at most that body's reach (exactReach ℓ, 1 % of a box's size by
-///   default); and a slow pair's manifold points, which stay those found at the current pose.
+///   depth by the rotation error above; the lever arm of an impulse in a slow pair by at most
+///   its bodies' reach (exactReach ℓ, 1 % of a box's size by default); and a slow pair's
+///   manifold points, which stay those found at the current pose.
+///
+/// Where COLLIDE acts, in both modes. \alg{A.2} collides the pairs while the bodies stand at
+/// their predicted poses and reverts them after (RESOLVECOLLISIONS L4-L6). Here begin() puts
+/// every body back before it returns; each contact keeps the lever arms r' = p - x' of the
+/// poses it was found at (ImpulseContact::ra, rb), so the impulse's linear and angular parts,
+/// j n and r' × j n, are those of \alg{A.2}. What changes is the inverse inertia the impulse is
+/// computed with: the current pose's I⁻¹(q), giving ω = I⁻¹(q) L, where \alg{A.2} has the
+/// predicted pose's I⁻¹(q') and ω' = I⁻¹(q') L.
+///
+///   DEVIATION(A.2 RESOLVECOLLISIONS L4-L6, RESOLVECONTACTS L4-L6): revertToOriginalPositions
+///   before COLLIDE instead of after. The state holds the current orientation q, and its kinetic
+///   energy is ½ P·v + ½ L·I⁻¹(q) L. An impulse computed with I⁻¹(q') removes energy measured
+///   with I⁻¹(q'), not with I⁻¹(q): the angular momentum it leaves can hold more energy at q
+///   than the step began with. On a fast-spinning flat body the difference is large: in random
+///   scene 22811 (verification/stress_test.cpp) a 284 kg plate 0.27 m thick, at 20 rad/s
+///   (|ω| Δt = 0.33 rad), hits the ground with e = 0.9; the impulse took 15.2 kJ from the plate
+///   measured at q' and added 26.0 kJ measured at q, the next pass added 9.2 kJ more, and the
+///   plate left the ground at 36.5 m/s after hitting it at 30.5 m/s. With velocity and impulse
+///   measured with the same lever arm and the state's inertia, the impulse changes the energy
+///   by ½ j (1 - e) v⁻ <= 0 (newtonian_impulse.hpp). The velocity it stops is also the one the
+///   step moves with: the position update turns the body by Δt ω with ω = I⁻¹(q) L held, which
+///   carries the material point at x + r to x' + r' arriving with velocity v + ω × r', the
+///   approach COLLIDE now sees (ω' × r' is not what the step integrates).
 #pragma once
 
 #include <array>
@@ -118,12 +141,12 @@ class ContactGathering {
 
   /// \alg{A.2} L2-L3 of a pass: the contacts at the positions predicted with v' = v (+ g Δt
   /// for movable bodies under VelocityPlusGravity), every pair closer than `margin` m, one
-  /// ImpulseContact per pair in a fixed order. EveryPass leaves the bodies at their predicted
-  /// poses until end(); OncePerStep leaves them where they are. The result stays valid until
-  /// the next call.
+  /// ImpulseContact per pair in a fixed order, with the lever arms of its material points where
+  /// the bodies stand: every body is back at its pose before the call when this returns (the
+  /// file comment, "Where COLLIDE acts"). The result stays valid until the next call.
   std::vector<ImpulseContact>& begin(World& world, double dt, GravityMode predict,
                                      double margin);
-  /// \alg{A.2} L6 of a pass: revertToOriginalPositions (EveryPass); momenta stay as changed.
+  /// Ends a pass. \alg{A.2} L6, revertToOriginalPositions, already happened in begin().
   void end(World& world);
   /// Ends the step: the closest faces seen become the previous step's, and the cached contacts
   /// are dropped (the step moves the bodies).

@@ -22,6 +22,11 @@ struct ImpulseContact {
   Vec3 point = Vec3::Zero();    ///< m: the centroid of the pair's contact manifold
   Vec3 normal = Vec3::UnitY();  ///< unit, from a towards b
   double depth = 0.0;           ///< m, deepest penetration of the manifold (negative: a gap)
+  /// m: the lever arm of the impulse on a, from a's centre to `point` where the contact was
+  /// found (contact_gathering.hpp: at a's predicted pose, while COLLIDE sees a where it stands).
+  Vec3 ra = Vec3::Zero();
+  /// m: the same for b.
+  Vec3 rb = Vec3::Zero();
 };
 
 /// Signed distance of world point p from the surface of a box, m: negative inside. When
@@ -38,7 +43,8 @@ class ContactNormalTracker {
 
   /// One ImpulseContact per manifold, in the manifolds' order. Under PreviousClosestFace the
   /// normal is the current normal of the face that was closest to the pair in the previous step
-  /// (when the pair touched then); the face found now is remembered for the next step.
+  /// (when the pair touched then); the face found now is remembered for the next step. The
+  /// lever arms are from the bodies' centres where they stand to the manifold's centroid.
   std::vector<ImpulseContact> contactsOf(const World& world,
                                          const std::vector<ContactManifold>& manifolds);
   /// The contact of one manifold, as contactsOf gives it; with `record` false the manifold's

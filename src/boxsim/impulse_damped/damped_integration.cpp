@@ -122,7 +122,7 @@ StepStats DampedIntegrationStepper::step(World& world, double dt) {
     for (std::size_t i = 0; i < n; ++i) before[i] = world.bodies[i].s.x;
     // L6: SETGEOMETRICALLYSTABLE, for the next step's COLLIDE L11-L14, needs the contacts
     // after L5: those it found, with the pairs of the bodies it nudged found again.
-    if (fixContactConstraints(world, restingMargin, params_.fixContacts, &contacts) > 0) {
+    if (fixContactConstraints(world, restingMargin, params_.fixContacts, dt, &contacts) > 0) {
       std::vector<char> nudged(n, 0);
       for (std::size_t i = 0; i < n; ++i)
         nudged[i] = static_cast<char>(world.bodies[i].s.x != before[i]);

@@ -3,6 +3,7 @@
 #include "boxsim/impulse_damped/fix_contact_constraints.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <tuple>
 
 #include "boxsim/collision/broad_phase.hpp"
@@ -10,7 +11,15 @@
 
 namespace boxsim {
 
-int fixContactConstraints(World& world, double margin, const FixContactParams& params,
+double fixLiftLimit(const RigidBody& body, const FixContactParams& params, const Vec3& gravity,
+                    double dt) {
+  const double ell = body.halfExtents.minCoeff();
+  const double travel = dt * (body.v.norm() + body.omega.norm() * body.halfExtents.norm()) +
+                        gravity.norm() * dt * dt;
+  return std::max(params.maxNudges * params.nudge * ell, travel);
+}
+
+int fixContactConstraints(World& world, double margin, const FixContactParams& params, double dt,
                           std::vector<ContactManifold>* gathered) {
   // A.2 L1: sortContactPointsAscending.
   std::vector<ContactManifold> contacts = findContacts(world, margin);
@@ -30,9 +39,11 @@ int fixContactConstraints(World& world, double margin, const FixContactParams& p
     const double ell = moving.halfExtents.minCoeff();
     const Obb stable = Obb::of(world.bodies[lower]);
     // A.2 L6-L7: nudge while they still intersect (beyond the documented slop).
-    for (int n = 0; n < params.maxNudges; ++n) {
+    const double step = params.nudge * ell;
+    const auto limit = static_cast<long>(std::ceil(fixLiftLimit(moving, params, world.gravity, dt) / step));
+    for (long n = 0; n < limit; ++n) {
       if (separatingAxisTest(Obb::of(moving), stable).depth <= params.slop * ell) break;
-      moving.s.x += params.nudge * ell * offset;  // x alone: nothing derived changes
+      moving.s.x += step * offset;  // x alone: nothing derived changes
       ++nudges;
     }
   }

@@ -124,7 +124,9 @@ struct FixContactParams {
   /// Documented slop, in units of ℓ: a pair counts as intersecting while its penetration
   /// exceeds this (\alg{A.2 L6}). 1e-3 ℓ: 1 mm for unit boxes.
   double slop = 1e-3;
-  /// Most nudges per contact, a guard against a contact that cannot be fixed upwards.
+  /// Most nudges per contact, a guard against a contact that cannot be fixed upwards: 500,
+  /// a lift of 0.1 ℓ. A body may be nudged further, by as far as the step can have carried it
+  /// into the contact (fixLiftLimit in fix_contact_constraints.hpp).
   int maxNudges = 500;
 };
 

@@ -28,7 +28,7 @@ double impulseWithGravity(RigidBody& a, RigidBody& b, const ImpulseContact& cont
                           double restitution, const Vec3& deltaV) {
   addVelocity(a, deltaV);
   addVelocity(b, deltaV);
-  return applyNewtonianImpulse(a, b, contact.point, contact.normal, restitution);
+  return applyNewtonianImpulse(a, b, contact.ra, contact.rb, contact.normal, restitution);
 }
 }  // namespace
 
@@ -61,9 +61,9 @@ double approachSpeed(const World& world, const ImpulseContact& contact, GravityM
   const RigidBody& b = world.bodies[contact.b];
   // A.2 L1-L6: g Δt is added to movable bodies only, so it cancels between two movable ones.
   const Vec3 deltaV = gravityVelocity(world, gravity, dt);
-  const Vec3 va = a.pointVelocity(contact.point) + (a.immovable ? Vec3(Vec3::Zero()) : deltaV);
-  const Vec3 vb = b.pointVelocity(contact.point) + (b.immovable ? Vec3(Vec3::Zero()) : deltaV);
-  return -contact.normal.dot(vb - va);
+  return -relativeNormalVelocity(a, b, contact.ra, contact.rb, contact.normal) -
+         contact.normal.dot((b.immovable ? Vec3(Vec3::Zero()) : deltaV) -
+                            (a.immovable ? Vec3(Vec3::Zero()) : deltaV));
 }
 
 double collideImpulse(const World& world, const ImpulseContact& contact, double restitution,
@@ -77,7 +77,9 @@ PassResult impulsePass(World& world, double dt, double restitution, GravityMode 
                        GravityMode impulseGravity, double margin, ContactGathering& gathering,
                        const std::vector<char>& stable, std::vector<char>* touched,
                        const BeforeCollide& beforeCollide) {
-  // L2-L3: integrateObjectPositions and gatherCollisions.
+  // L2-L3: integrateObjectPositions and gatherCollisions; L6, revertToOriginalPositions, too:
+  // the contacts keep the lever arms of the poses they were found at.
+  // DEVIATION(A.2 L4-L6): COLLIDE after the revert (contact_gathering.hpp, "Where COLLIDE acts").
   std::vector<ImpulseContact>& contacts = gathering.begin(world, dt, predict, margin);
   // L4-L5: collide every pair.
   PassResult result;
@@ -88,7 +90,7 @@ PassResult impulsePass(World& world, double dt, double restitution, GravityMode 
     if (touched) (*touched)[c.a] = (*touched)[c.b] = 1;
     if (collide(world, c, restitution, impulseGravity, dt, stable) > 0.0) ++result.impulses;
   }
-  // L6: revertToOriginalPositions; the momenta the impulses changed stay.
+  // The momenta the impulses changed stay.
   gathering.end(world);
   return result;
 }

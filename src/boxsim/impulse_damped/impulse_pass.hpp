@@ -1,8 +1,8 @@
 /// \file
 /// The building blocks both impulse-based techniques share: COLLIDE (\alg{A.2}) and one pass of
 /// RESOLVECOLLISIONS / RESOLVECONTACTS (\alg{A.2}): move every body to its predicted position,
-/// gather the pairs that touch there, collide each, and put the positions back, keeping the
-/// changed momenta (Guendelman et al. 2003, §7).
+/// gather the pairs that touch there, put the positions back and collide each pair with the
+/// lever arms found there, keeping the changed momenta (Guendelman et al. 2003, §7).
 #pragma once
 
 #include <functional>
@@ -19,9 +19,9 @@ namespace boxsim {
 
 /// COLLIDE(collision, restitution, gravity) of \alg{A.2}: with VelocityPlusGravity both bodies'
 /// velocities get g Δt added for the impulse and taken off after (L1-L6, L9-L10); the Newtonian
-/// impulse with `restitution` acts at the contact point along its normal (L7-L8); then a
-/// geometrically stable body loses its vertical momentum and its tipping angular momentum
-/// (L11-L14). `stable` is empty or has one flag per body.
+/// impulse with `restitution` acts at the contact's lever arms ra, rb along its normal
+/// (L7-L8); then a geometrically stable body loses its vertical momentum and its tipping
+/// angular momentum (L11-L14). `stable` is empty or has one flag per body.
 /// \return the impulse magnitude applied, N s (0 when the bodies separate at the point).
 double collide(World& world, const ImpulseContact& contact, double restitution, GravityMode gravity,
                double dt, const std::vector<char>& stable);
@@ -58,8 +58,10 @@ struct PassResult {
 
 /// One pass of RESOLVECOLLISIONS / RESOLVECONTACTS (\alg{A.2} L2-L6 of either):
 /// integrateObjectPositions (x += Δt v', q += Δt ½ ω q with v' = v + g Δt under
-/// `predict` = VelocityPlusGravity), gatherCollisions (every pair closer than `margin` m), COLLIDE
-/// each with `restitution` and `impulseGravity`, revertToOriginalPositions; `gathering` does
+/// `predict` = VelocityPlusGravity), gatherCollisions (every pair closer than `margin` m),
+/// revertToOriginalPositions, then COLLIDE each with `restitution` and `impulseGravity` at the
+/// lever arms the gathering gives (DEVIATION(A.2 L4-L6): the revert comes first;
+/// contact_gathering.hpp, "Where COLLIDE acts"); `gathering` does
 /// the moving and gathering, exactly or to first order (contact_gathering.hpp). Bodies marked in
 /// `touched` (one flag per body, or empty) get their flag set when they take part in a contact.
 /// `beforeCollide`, when set, sees each contact just before its COLLIDE.

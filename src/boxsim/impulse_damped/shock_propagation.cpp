@@ -53,7 +53,7 @@ int propagateShock(World& world, double dt, double margin, ContactGathering& gat
     RigidBody& b = world.bodies[c.b];
     double j = 0.0;
     if (level[c.a] == level[c.b]) {
-      j = applyNewtonianImpulse(a, b, c.point, c.normal, 0.0);
+      j = applyNewtonianImpulse(a, b, c.ra, c.rb, c.normal, 0.0);
     } else {
       // The lower level has already been settled: it acts as if infinitely heavy. A copy with
       // zero inverse mass and inertia stands in for it, so only the upper body changes.
@@ -62,8 +62,8 @@ int propagateShock(World& world, double dt, double margin, ContactGathering& gat
       fixed.invMass = 0.0;
       fixed.Iinv.setZero();
       fixed.immovable = true;
-      j = aLower ? applyNewtonianImpulse(fixed, b, c.point, c.normal, 0.0)
-                 : applyNewtonianImpulse(a, fixed, c.point, c.normal, 0.0);
+      j = aLower ? applyNewtonianImpulse(fixed, b, c.ra, c.rb, c.normal, 0.0)
+                 : applyNewtonianImpulse(a, fixed, c.ra, c.rb, c.normal, 0.0);
     }
     if (j > 0.0) ++impulses;
   }

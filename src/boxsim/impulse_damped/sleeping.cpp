@@ -141,7 +141,7 @@ void Sleeping::indexResting(std::size_t n) {
   }
 }
 
-double Sleeping::pointInverseMass(const World& world, int body, const Vec3& point,
+double Sleeping::pointInverseMass(const World& world, int body, const Vec3& r,
                                   const Vec3& n) const {
   // The body's own mass properties, not the stand-in's: 1/m + n·((I⁻¹ (r × n)) × r), the
   // velocity change of the material point at `point` along n per unit impulse along n.
@@ -149,7 +149,7 @@ double Sleeping::pointInverseMass(const World& world, int body, const Vec3& poin
   const MassProperties m =
       standing_[body] ? saved_[body] : MassProperties{b.mass, b.invMass, b.IbodyInvDiag};
   const Mat3 Iinv = b.R * m.IbodyInvDiag.asDiagonal() * b.R.transpose();
-  return m.invMass + rotationalInverseMass(Iinv, point - b.s.x, n);
+  return m.invMass + rotationalInverseMass(Iinv, r, n);
 }
 
 void Sleeping::beforeCollide(World& world, const ImpulseContact& contact,
@@ -162,7 +162,8 @@ void Sleeping::beforeCollide(World& world, const ImpulseContact& contact,
   bool wakes = approachSpeed(world, contact, call.gravity, call.dt) > params_.wakeSpeed * u;
   if (!wakes) {
     const double j = collideImpulse(world, contact, call.restitution, call.gravity, call.dt);
-    wakes = j * pointInverseMass(world, sleeper, contact.point, contact.normal) >
+    const Vec3& r = sleeper == contact.a ? contact.ra : contact.rb;
+    wakes = j * pointInverseMass(world, sleeper, r, contact.normal) >
             params_.wakeImpulse * u;
   }
   // Woken before its COLLIDE, the body takes its share of this very impulse.

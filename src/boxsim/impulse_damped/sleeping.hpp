@@ -128,7 +128,9 @@ class Sleeping {
   bool supportedBy(const ContactManifold& contact, int upper) const;
   /// Rebuilds restingOf_ (for each of n bodies, the indices of its remembered contacts).
   void indexResting(std::size_t n);
-  double pointInverseMass(const World& world, int body, const Vec3& point, const Vec3& n) const;
+  /// 1/kg: the normal velocity change per unit normal impulse of body's material point at lever
+  /// arm r (m) along n, with the body's own mass properties even while it stands immovable.
+  double pointInverseMass(const World& world, int body, const Vec3& r, const Vec3& n) const;
 
   SleepParams params_;
   double slop_;                         // FIXCONTACTCONSTRAINTS' slop, in units of ℓ

@@ -354,7 +354,7 @@ StepStats TimewarpStepper::step(World& world, double dt) {
   Frame frame(world, dt, params_);
   StepStats stats = frame.run(events_);
   if (params_.fixInterpenetration)
-    fixContactConstraints(world, params_.contactMargin, params_.fix);  // L22 / L33
+    fixContactConstraints(world, params_.contactMargin, params_.fix, dt);  // L22 / L33
   stats.contacts = static_cast<int>(findContacts(world, params_.contactMargin).size());
   return stats;
 }
