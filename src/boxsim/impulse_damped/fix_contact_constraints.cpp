@@ -11,9 +11,11 @@
 namespace boxsim {
 
 int fixContactConstraints(World& world, double margin, const FixContactParams& params,
-                          std::vector<ContactManifold>* gathered) {
+                          std::vector<ContactManifold>* gathered,
+                          const std::vector<std::pair<int, int>>* pairs) {
   // A.2 L1: sortContactPointsAscending.
-  std::vector<ContactManifold> contacts = findContacts(world, margin);
+  std::vector<ContactManifold> contacts =
+      pairs ? findContacts(world, margin, *pairs) : findContacts(world, margin);
   if (gathered) *gathered = contacts;
   const auto key = [](const ContactManifold& m) { return std::make_tuple(m.centroid().y(), m.a, m.b); };
   std::stable_sort(contacts.begin(), contacts.end(),
