@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 #include <stdexcept>
 #include <utility>
 
@@ -106,6 +107,12 @@ constexpr double kGuardRoundingSlack = 1e-9;
 double roundingSlack(const RigidBody& body, double halfDiagonal) {
   return kGuardRoundingSlack * (1.0 + body.s.x.cwiseAbs().maxCoeff() + halfDiagonal);
 }
+/// Whether two vectors hold the same doubles bit for bit (so -0 differs from 0, and a NaN
+/// equals itself): the test for reusing a value computed from them.
+bool sameBits(const Vec3& a, const Vec3& b) {
+  return std::memcmp(a.data(), b.data(), 3 * sizeof(double)) == 0;
+}
+
 /// Up to this many bodies outgrowing their bounds in a pass are each tested against every
 /// body (O(n) apiece); more, and the whole sweep is redone.
 constexpr std::size_t kMaxDirectlyGrown = 128;
@@ -140,26 +147,25 @@ bool ContactGathering::withinGuard(const RigidBody& body, int i, const Vec3& dis
   return true;
 }
 
-void ContactGathering::sweepCandidates(const World& world, const Vec3& gravityStep, double dt,
-                                       double margin) {
+void ContactGathering::sweepCandidates(const World& world, const Vec3& gravityStep, double dt) {
   const std::size_t n = world.bodies.size();
   guardLo_.resize(n);
   guardHi_.resize(n);
   for (std::size_t i = 0; i < n; ++i) setGuard(world, static_cast<int>(i), gravityStep, dt);
   candidates_.clear();
   hasCandidate_.assign(n, 0);
-  for (const auto& [i, j] : candidatePairs(world, guardLo_, guardHi_, margin)) {
+  for (const auto& [i, j] : candidatePairs(world, guardLo_, guardHi_, sweepMargin_)) {
     candidates_.push_back(Candidate{i, j, SeparatingAxisResult{}, false});
     hasCandidate_[i] = hasCandidate_[j] = 1;
   }
 }
 
 void ContactGathering::growCandidates(const World& world, const Vec3& gravityStep, double dt,
-                                      double margin, const std::vector<int>& outgrown) {
+                                      const std::vector<int>& outgrown) {
   const int n = static_cast<int>(world.bodies.size());
   // Many at once (a clump's first impact): one sweep is cheaper than testing each against all.
   if (outgrown.size() > kMaxDirectlyGrown) {
-    sweepCandidates(world, gravityStep, dt, margin);
+    sweepCandidates(world, gravityStep, dt);
     return;
   }
   std::vector<char> isOutgrown(world.bodies.size(), 0);
@@ -174,7 +180,7 @@ void ContactGathering::growCandidates(const World& world, const Vec3& gravitySte
     for (int j = 0; j < n; ++j) {
       if (j == i || (isOutgrown[j] && j < i)) continue;
       if (world.bodies[i].immovable && world.bodies[j].immovable) continue;
-      if (boundsWithin(guardLo_[i], guardHi_[i], guardLo_[j], guardHi_[j], margin)) {
+      if (boundsWithin(guardLo_[i], guardHi_[i], guardLo_[j], guardHi_[j], sweepMargin_)) {
         found.emplace_back(std::min(i, j), std::max(i, j));
         hasCandidate_[i] = hasCandidate_[j] = 1;
       }
@@ -217,7 +223,12 @@ void ContactGathering::buildCache(const World& world, const Vec3& gravityStep, d
     if (reach(body, gravityStep, dt) > params_.exactReach * body.halfExtents.minCoeff())
       fast_[i] = 1;
   }
-  sweepCandidates(world, gravityStep, dt, margin);
+  // Wider than the passes need: their own test (boundsWithin with `margin`) picks from the
+  // candidates, so a wider sweep finds the same contacts, and it makes the candidates hold the
+  // pairs FIXCONTACTCONSTRAINTS looks at after the passes (stepPairs), whose margin
+  // (restingContactMargin) is wider by g Δt².
+  sweepMargin_ = margin + world.gravity.norm() * dt * dt;
+  sweepCandidates(world, gravityStep, dt);
   // One narrow phase at the current poses for the slow pairs, each body widened by more than a
   // slow body can move (slowWidening >= exactReach): the pairs the broad phase
   // gives with margin and widening, picked from the candidates (whose growth is at least the
@@ -251,6 +262,10 @@ void ContactGathering::buildCache(const World& world, const Vec3& gravityStep, d
     pairs_.push_back(pair);
   }
   ++narrowPhases_;
+  // Every predicted pose and every candidate's answer is from before this build.
+  buildStamp_ = ++stampCounter_;
+  predicted_.resize(n);
+  manifolds_.clear();
   cacheMargin_ = margin;
   cached_ = true;
 }
@@ -289,6 +304,38 @@ bool ContactGathering::predictedContact(const World& world, const CachedPair& pa
   return true;
 }
 
+void ContactGathering::movePredictedCached(RigidBody& body, int i, double dt,
+                                           const Vec3& gravityStep) {
+  PredictedPose& p = predicted_[i];
+  // movePredicted reads x, q (unchanged since the build), v and ω; the velocities it leaves
+  // come from P and L: with all of them as before, it would compute the same pose, bit for bit.
+  if (p.stamp > buildStamp_ && sameBits(p.v, body.v) && sameBits(p.omega, body.omega) &&
+      sameBits(p.P, body.s.P) && sameBits(p.L, body.s.L)) {
+    body.s.x = p.x;
+    body.s.q = p.q;
+    body.R = p.R;
+    body.Iinv = p.Iinv;
+    body.v = p.vPredicted;
+    body.omega = p.omegaPredicted;
+  } else {
+    p.P = body.s.P;
+    p.L = body.s.L;
+    p.v = body.v;
+    p.omega = body.omega;
+    movePredicted(body, dt, gravityStep);
+    p.x = body.s.x;
+    p.q = body.s.q;
+    p.R = body.R;
+    p.Iinv = body.Iinv;
+    p.vPredicted = body.v;
+    p.omegaPredicted = body.omega;
+    obbBounds(Obb::of(body), 0.0, p.lo, p.hi);
+    p.stamp = ++stampCounter_;
+  }
+  predictedLo_[i] = p.lo;
+  predictedHi_[i] = p.hi;
+}
+
 bool ContactGathering::exactContact(const World& world, int i, int j, double margin,
                                     ImpulseContact& contact) {
   return contactOf(world, i, j,
@@ -318,6 +365,14 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
   }
   // DEVIATION(A.2 L2-L3): the prediction of the file comment.
   if (margin != cacheMargin_ || !cacheCovers(world)) buildCache(world, gravityStep, dt, margin);
+  // The predicted poses kept are for one g Δt and Δt (a shock propagation pass, say, predicts
+  // with another): for others they, and the answers found with them, are forgotten.
+  if (!sameBits(gravityStep, predictedGravity_) ||
+      std::memcmp(&dt, &predictedDt_, sizeof(double)) != 0) {
+    predictedGravity_ = gravityStep;
+    predictedDt_ = dt;
+    buildStamp_ = ++stampCounter_;
+  }
   // A.2 L2 for the fast bodies only: they go to their predicted poses, as written. A body fast
   // when the cache was built stays fast for the step: the cache holds no pairs of its.
   const std::size_t n = world.bodies.size();
@@ -344,7 +399,7 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
   // The step's candidates hold every pair that can come near while each body moves less than
   // its growth; one that outgrew it needs its pairs found afresh, from the poses the bodies
   // stand at.
-  if (!outgrown.empty()) growCandidates(world, gravityStep, dt, margin, outgrown);
+  if (!outgrown.empty()) growCandidates(world, gravityStep, dt, outgrown);
   predictedLo_.resize(n);
   predictedHi_.resize(n);
   bool anyFast = false;
@@ -359,8 +414,7 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
     moved_[i] = 1;
     anyFast = true;
     saved_[i] = SavedPose{body.s.x, body.s.q, body.R, body.Iinv, false};
-    movePredicted(body, dt, gravityStep);
-    obbBounds(Obb::of(body), 0.0, predictedLo_[i], predictedHi_[i]);
+    movePredictedCached(body, i, dt, gravityStep);
   }
   // A.2 L3 for the pairs with a fast body: the broad and narrow phase where the bodies now
   // stand, as written. The broad phase is the broad phases' own test (boundsWithin) on the
@@ -368,6 +422,8 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
   // order, which is the cache's order too, so the two lists merge into one.
   partner_.assign(n, 0);
   partners_.clear();
+  poseStamp_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) poseStamp_[i] = moved_[i] ? predicted_[i].stamp : buildStamp_;
   fastContacts_.clear();
   ImpulseContact c;
   if (anyFast)
@@ -388,20 +444,42 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
             partner_[j] = 1;
             partners_.push_back(j);
             saved_[j] = SavedPose{body.s.x, body.s.q, body.R, body.Iinv, false};
-            movePredicted(body, dt, gravityStep);
-            obbBounds(Obb::of(body), 0.0, predictedLo_[j], predictedHi_[j]);
+            movePredictedCached(body, j, dt, gravityStep);
+            poseStamp_[j] = predicted_[j].stamp;
           }
         }
       }
+      // Both bodies where they stood when the pair was last looked at: the broad and narrow
+      // phase would answer as then, so the answer is taken from then (the normal model still
+      // sees the manifold, as it would).
+      Candidate& candidate = candidates_[k];
+      const std::uint64_t stampA = poseStamp_[a], stampB = poseStamp_[b];
+      if (candidate.stampA == stampA && candidate.stampB == stampB) {
+        if (candidate.manifold >= 0 &&
+            contactOf(world, a, b, manifolds_[static_cast<std::size_t>(candidate.manifold)], c))
+          fastContacts_.push_back(c);
+        continue;
+      }
+      candidate.stampA = stampA;
+      candidate.stampB = stampB;
       // Bounds where each body stands in this pass: predicted once it moved, current before.
       const bool predictedA = moved_[a] || partner_[a], predictedB = moved_[b] || partner_[b];
       const Vec3& loA = predictedA ? predictedLo_[a] : lo_[a];
       const Vec3& hiA = predictedA ? predictedHi_[a] : hi_[a];
       const Vec3& loB = predictedB ? predictedLo_[b] : lo_[b];
       const Vec3& hiB = predictedB ? predictedHi_[b] : hi_[b];
-      if (boundsWithin(loA, hiA, loB, hiB, margin) &&
-          candidateContact(world, k, margin, c))
-        fastContacts_.push_back(c);
+      ContactManifold m;
+      if (!boundsWithin(loA, hiA, loB, hiB, margin) || !candidateManifold(world, k, margin, m)) {
+        candidate.manifold = -1;
+        continue;
+      }
+      if (candidate.manifold < 0) {
+        candidate.manifold = static_cast<int>(manifolds_.size());
+        manifolds_.push_back(m);
+      } else {
+        manifolds_[static_cast<std::size_t>(candidate.manifold)] = m;
+      }
+      if (contactOf(world, a, b, std::move(m), c)) fastContacts_.push_back(c);
     }
   // The partners go back (their velocities recomputed exactly as they were): the slow pairs'
   // prediction below and COLLIDE see every slow body where it stands.
@@ -437,18 +515,58 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
   return contacts_;
 }
 
-bool ContactGathering::candidateContact(const World& world, std::size_t k, double margin,
-                                        ImpulseContact& contact) {
+bool ContactGathering::candidateManifold(const World& world, std::size_t k, double margin,
+                                         ContactManifold& manifold) {
   Candidate& candidate = candidates_[k];
   const Obb a = Obb::of(world.bodies[candidate.a]);
   const Obb b = Obb::of(world.bodies[candidate.b]);
   // Apart last time, and still apart along the same axis: the full test would say so too.
   if (candidate.apart && separatedBeyond(a, b, candidate.axis, margin)) return false;
   const SeparatingAxisResult sat = separatingAxisTest(a, b);
-  ContactManifold m = buildContactManifold(a, b, sat, margin);
+  manifold = buildContactManifold(a, b, sat, margin);
   candidate.axis = sat;
-  candidate.apart = m.count == 0;
-  return contactOf(world, candidate.a, candidate.b, std::move(m), contact);
+  candidate.apart = manifold.count == 0;
+  return manifold.count > 0;
+}
+
+bool ContactGathering::stepPairs(const World& world, double margin,
+                                 std::vector<std::pair<int, int>>& pairs) const {
+  if (params_.gathering != ContactGatheringMode::OncePerStep || !cacheCovers(world) ||
+      !(margin <= sweepMargin_) || guardLo_.size() != world.bodies.size())
+    return false;
+  const std::size_t n = world.bodies.size();
+  std::vector<Vec3> lo(n), hi(n);
+  std::vector<char> outside(n, 0);
+  std::vector<int> outsiders;
+  for (std::size_t i = 0; i < n; ++i) {
+    obbBounds(Obb::of(world.bodies[i]), 0.0, lo[i], hi[i]);
+    // Inside, bound for bound: then guardLo_[b] - guardHi_[a] <= lo[b] - hi[a] in floating
+    // point too (subtraction rounds monotonically), so a pair within the margin here was
+    // within the sweep's margin there, and is a candidate. NaN bounds count as outside.
+    if (!((lo[i].array() >= guardLo_[i].array()).all() &&
+          (hi[i].array() <= guardHi_[i].array()).all())) {
+      outside[i] = 1;
+      outsiders.push_back(static_cast<int>(i));
+    }
+  }
+  if (outsiders.size() > kMaxDirectlyGrown) return false;
+  std::vector<std::pair<int, int>> found;
+  for (const Candidate& c : candidates_)
+    if (!outside[c.a] && !outside[c.b] && boundsWithin(lo[c.a], hi[c.a], lo[c.b], hi[c.b], margin))
+      found.emplace_back(c.a, c.b);
+  // The bodies outside their bounds against every body, as the broad phase would test them (a
+  // pair of two such bodies once, from its lower index).
+  for (int i : outsiders)
+    for (std::size_t jj = 0; jj < n; ++jj) {
+      const int j = static_cast<int>(jj);
+      if (j == i || (outside[jj] && j < i)) continue;
+      if (world.bodies[i].immovable && world.bodies[jj].immovable) continue;
+      if (boundsWithin(lo[i], hi[i], lo[jj], hi[jj], margin))
+        found.emplace_back(std::min(i, j), std::max(i, j));
+    }
+  if (!outsiders.empty()) std::sort(found.begin(), found.end());
+  pairs.swap(found);
+  return true;
 }
 
 void ContactGathering::end(World& world) {
