@@ -304,36 +304,48 @@ bool ContactGathering::predictedContact(const World& world, const CachedPair& pa
   return true;
 }
 
-void ContactGathering::movePredictedCached(RigidBody& body, int i, double dt,
-                                           const Vec3& gravityStep) {
+void ContactGathering::preparePredicted(const RigidBody& body, int i, double dt,
+                                        const Vec3& gravityStep) {
   PredictedPose& p = predicted_[i];
   // movePredicted reads x, q (unchanged since the build), v and ω; the velocities it leaves
   // come from P and L: with all of them as before, it would compute the same pose, bit for bit.
   if (p.stamp > buildStamp_ && sameBits(p.v, body.v) && sameBits(p.omega, body.omega) &&
-      sameBits(p.P, body.s.P) && sameBits(p.L, body.s.L)) {
-    body.s.x = p.x;
-    body.s.q = p.q;
-    body.R = p.R;
-    body.Iinv = p.Iinv;
-    body.v = p.vPredicted;
-    body.omega = p.omegaPredicted;
-  } else {
-    p.P = body.s.P;
-    p.L = body.s.L;
-    p.v = body.v;
-    p.omega = body.omega;
-    movePredicted(body, dt, gravityStep);
-    p.x = body.s.x;
-    p.q = body.s.q;
-    p.R = body.R;
-    p.Iinv = body.Iinv;
-    p.vPredicted = body.v;
-    p.omegaPredicted = body.omega;
-    obbBounds(Obb::of(body), 0.0, p.lo, p.hi);
-    p.stamp = ++stampCounter_;
-  }
-  predictedLo_[i] = p.lo;
-  predictedHi_[i] = p.hi;
+      sameBits(p.P, body.s.P) && sameBits(p.L, body.s.L))
+    return;
+  RigidBody moved = body;
+  movePredicted(moved, dt, gravityStep);
+  p.P = body.s.P;
+  p.L = body.s.L;
+  p.v = body.v;
+  p.omega = body.omega;
+  p.x = moved.s.x;
+  p.q = moved.s.q;
+  p.R = moved.R;
+  p.Iinv = moved.Iinv;
+  p.vPredicted = moved.v;
+  p.omegaPredicted = moved.omega;
+  obbBounds(Obb::of(moved), 0.0, p.lo, p.hi);
+  p.stamp = ++stampCounter_;
+}
+
+void ContactGathering::place(World& world, int i) {
+  if (placed_[i] || !(moved_[i] || partner_[i])) return;
+  RigidBody& body = world.bodies[i];
+  const PredictedPose& p = predicted_[i];
+  saved_[i] = SavedPose{body.s.x, body.s.q, body.R, body.Iinv, false};
+  body.s.x = p.x;
+  body.s.q = p.q;
+  body.R = p.R;
+  body.Iinv = p.Iinv;
+  body.v = p.vPredicted;
+  body.omega = p.omegaPredicted;
+  placed_[i] = 1;
+}
+
+Obb ContactGathering::passBox(const World& world, int i) const {
+  const RigidBody& body = world.bodies[i];
+  if (!(moved_[i] || partner_[i])) return Obb::of(body);
+  return Obb{predicted_[i].x, predicted_[i].R, body.halfExtents};
 }
 
 bool ContactGathering::exactContact(const World& world, int i, int j, double margin,
@@ -360,6 +372,7 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
     // A.2 L2: integrateObjectPositions, remembering where every body was; L3: gatherCollisions.
     saved_ = predictPositions(world, dt, gravityStep);
     moved_.assign(world.bodies.size(), 1);
+    placed_.assign(world.bodies.size(), 1);
     contacts_ = normals_.contactsOf(world, findContacts(world, margin));
     return contacts_;
   }
@@ -377,6 +390,8 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
   // when the cache was built stays fast for the step: the cache holds no pairs of its.
   const std::size_t n = world.bodies.size();
   moved_.assign(n, 0);
+  placed_.assign(n, 0);
+  partner_.assign(n, 0);
   saved_.resize(n);
   std::vector<int>& fast = fastBodies_;
   std::vector<int>& outgrown = outgrown_;
@@ -400,8 +415,6 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
   // its growth; one that outgrew it needs its pairs found afresh, from the poses the bodies
   // stand at.
   if (!outgrown.empty()) growCandidates(world, gravityStep, dt, outgrown);
-  predictedLo_.resize(n);
-  predictedHi_.resize(n);
   bool anyFast = false;
   for (int i : fast) {
     RigidBody& body = world.bodies[i];
@@ -411,16 +424,18 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
       body.updateVelocities();
       continue;
     }
+    // It stands at its predicted pose for the pass (moved_); the narrow phase looks at that
+    // pose where it is kept (passBox), and the body goes there (place) only when one of its
+    // pairs touches: then the normal model and COLLIDE see it there, as written. A body that
+    // touches nothing ends the pass as if it had gone and come back (end()).
     moved_[i] = 1;
     anyFast = true;
-    saved_[i] = SavedPose{body.s.x, body.s.q, body.R, body.Iinv, false};
-    movePredictedCached(body, i, dt, gravityStep);
+    preparePredicted(body, i, dt, gravityStep);
   }
   // A.2 L3 for the pairs with a fast body: the broad and narrow phase where the bodies now
   // stand, as written. The broad phase is the broad phases' own test (boundsWithin) on the
   // candidates, so it keeps the pairs a sweep at these poses would find, in the same (a, b)
   // order, which is the cache's order too, so the two lists merge into one.
-  partner_.assign(n, 0);
   partners_.clear();
   poseStamp_.resize(n);
   for (std::size_t i = 0; i < n; ++i) poseStamp_[i] = moved_[i] ? predicted_[i].stamp : buildStamp_;
@@ -439,12 +454,11 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
         const int i = moved_[a] ? a : b, j = moved_[a] ? b : a;
         RigidBody& body = world.bodies[j];
         if (!body.immovable && !partner_[j]) {
-          if (boundsWithin(predictedLo_[i], predictedHi_[i], lo_[j], hi_[j],
+          if (boundsWithin(predicted_[i].lo, predicted_[i].hi, lo_[j], hi_[j],
                            margin + passReach_[j] + roundingSlack(body, halfDiagonal_[j]))) {
             partner_[j] = 1;
             partners_.push_back(j);
-            saved_[j] = SavedPose{body.s.x, body.s.q, body.R, body.Iinv, false};
-            movePredictedCached(body, j, dt, gravityStep);
+            preparePredicted(body, j, dt, gravityStep);
             poseStamp_[j] = predicted_[j].stamp;
           }
         }
@@ -455,19 +469,22 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
       Candidate& candidate = candidates_[k];
       const std::uint64_t stampA = poseStamp_[a], stampB = poseStamp_[b];
       if (candidate.stampA == stampA && candidate.stampB == stampB) {
-        if (candidate.manifold >= 0 &&
-            contactOf(world, a, b, manifolds_[static_cast<std::size_t>(candidate.manifold)], c))
-          fastContacts_.push_back(c);
+        if (candidate.manifold >= 0) {
+          place(world, a);
+          place(world, b);
+          if (contactOf(world, a, b, manifolds_[static_cast<std::size_t>(candidate.manifold)], c))
+            fastContacts_.push_back(c);
+        }
         continue;
       }
       candidate.stampA = stampA;
       candidate.stampB = stampB;
       // Bounds where each body stands in this pass: predicted once it moved, current before.
       const bool predictedA = moved_[a] || partner_[a], predictedB = moved_[b] || partner_[b];
-      const Vec3& loA = predictedA ? predictedLo_[a] : lo_[a];
-      const Vec3& hiA = predictedA ? predictedHi_[a] : hi_[a];
-      const Vec3& loB = predictedB ? predictedLo_[b] : lo_[b];
-      const Vec3& hiB = predictedB ? predictedHi_[b] : hi_[b];
+      const Vec3& loA = predictedA ? predicted_[a].lo : lo_[a];
+      const Vec3& hiA = predictedA ? predicted_[a].hi : hi_[a];
+      const Vec3& loB = predictedB ? predicted_[b].lo : lo_[b];
+      const Vec3& hiB = predictedB ? predicted_[b].hi : hi_[b];
       ContactManifold m;
       if (!boundsWithin(loA, hiA, loB, hiB, margin) || !candidateManifold(world, k, margin, m)) {
         candidate.manifold = -1;
@@ -479,11 +496,20 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
       } else {
         manifolds_[static_cast<std::size_t>(candidate.manifold)] = m;
       }
+      place(world, a);
+      place(world, b);
       if (contactOf(world, a, b, std::move(m), c)) fastContacts_.push_back(c);
     }
   // The partners go back (their velocities recomputed exactly as they were): the slow pairs'
   // prediction below and COLLIDE see every slow body where it stands.
-  for (int j : partners_) restorePose(world.bodies[j], saved_[j]);
+  for (int j : partners_) {
+    if (placed_[j]) {
+      restorePose(world.bodies[j], saved_[j]);
+      placed_[j] = 0;
+    } else {
+      world.bodies[j].updateVelocities();  // what going and coming back leaves
+    }
+  }
   contacts_.clear();
   std::size_t f = 0;
   const auto keyOf = [](const ImpulseContact& contact) {
@@ -518,8 +544,8 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
 bool ContactGathering::candidateManifold(const World& world, std::size_t k, double margin,
                                          ContactManifold& manifold) {
   Candidate& candidate = candidates_[k];
-  const Obb a = Obb::of(world.bodies[candidate.a]);
-  const Obb b = Obb::of(world.bodies[candidate.b]);
+  const Obb a = passBox(world, candidate.a);
+  const Obb b = passBox(world, candidate.b);
   // Apart last time, and still apart along the same axis: the full test would say so too.
   if (candidate.apart && separatedBeyond(a, b, candidate.axis, margin)) return false;
   const SeparatingAxisResult sat = separatingAxisTest(a, b);
@@ -571,9 +597,18 @@ bool ContactGathering::stepPairs(const World& world, double margin,
 
 void ContactGathering::end(World& world) {
   // A.2 L6: revertToOriginalPositions; the momenta the impulses changed stay.
-  for (std::size_t i = 0; i < moved_.size() && i < world.bodies.size(); ++i)
-    if (moved_[i] && !world.bodies[i].immovable) restorePose(world.bodies[i], saved_[i]);
+  for (std::size_t i = 0; i < moved_.size() && i < world.bodies.size(); ++i) {
+    if (!moved_[i] || world.bodies[i].immovable) continue;
+    if (placed_[i]) {
+      restorePose(world.bodies[i], saved_[i]);
+    } else {
+      // Never went to its predicted pose (nothing it touched): restorePose would give back its
+      // pose and recompute its velocities; only the latter is left to do.
+      world.bodies[i].updateVelocities();
+    }
+  }
   moved_.clear();
+  placed_.clear();
 }
 
 void ContactGathering::endStep() {

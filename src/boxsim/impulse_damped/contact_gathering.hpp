@@ -65,6 +65,7 @@
 #include <vector>
 
 #include "boxsim/collision/contact.hpp"
+#include "boxsim/collision/obb.hpp"
 #include "boxsim/collision/separating_axis.hpp"
 #include "boxsim/core/world.hpp"
 #include "boxsim/impulse_damped/contact_normal.hpp"
@@ -232,15 +233,22 @@ class ContactGathering {
     /// only when greater than buildStamp_.
     std::uint64_t stamp = 0;
   };
-  /// movePredicted for body i, through predicted_[i]; the body's predicted bounds go to
-  /// predictedLo_[i], predictedHi_[i].
-  void movePredictedCached(RigidBody& body, int i, double dt, const Vec3& gravityStep);
+  /// Makes predicted_[i] hold what movePredicted would make of body i now (kept from an
+  /// earlier pass when its key is unchanged); the body stays where it is.
+  void preparePredicted(const RigidBody& body, int i, double dt, const Vec3& gravityStep);
+  /// Moves body i to its predicted pose of this pass (predicted_[i]), remembering where it
+  /// stood, if it stands at that pose for this pass (moved_ or partner_) and is not there yet.
+  void place(World& world, int i);
+  /// Body i's box where it stands in this pass: at its predicted pose (moved_ or partner_),
+  /// placed or not, else where it is.
+  Obb passBox(const World& world, int i) const;
 
   ImpulseParams params_;
   ContactNormalTracker normals_;
   std::vector<ImpulseContact> contacts_;
-  SavedPoses saved_;             ///< poses before the pass, of the bodies in moved_
-  std::vector<char> moved_;      ///< per body: moved to its predicted pose for this pass
+  SavedPoses saved_;             ///< poses before the pass, of the bodies placed_
+  std::vector<char> moved_;      ///< per body: a fast body standing at its predicted pose
+  std::vector<char> placed_;     ///< per body: actually moved there (place), saved_ holds its pose
   bool cached_ = false;
   std::vector<CachedPair> pairs_;
   std::vector<char> immovable_;   ///< each body's mobility when the cache was built
@@ -258,9 +266,8 @@ class ContactGathering {
   std::vector<int> outgrown_;          ///< this pass: fast bodies that outgrew their bounds
   std::vector<int> fastBodies_;        ///< this pass: bodies fast now or at the cache's build
   std::vector<char> hasCandidate_;     ///< per body: in at least one candidate pair
-  std::vector<Vec3> predictedLo_, predictedHi_;  ///< bounds where each body stands in this pass
   std::vector<double> passReach_;      ///< m, per movable body: its reach in this pass
-  std::vector<char> partner_;          ///< per body: a slow partner moved for the narrow phase
+  std::vector<char> partner_;          ///< per body: a slow partner standing at its predicted pose for the narrow phase
   std::vector<int> partners_;          ///< this pass: the slow partners moved
   std::vector<ImpulseContact> fastContacts_;  ///< this pass: the pairs with a fast body, by pair
   std::vector<PredictedPose> predicted_;  ///< per body: its last predicted pose in the step
