@@ -121,6 +121,7 @@ constexpr std::size_t kMaxDirectlyGrown = 128;
 void ContactGathering::setGuard(const World& world, int i, const Vec3& gravityStep, double dt) {
   const RigidBody& body = world.bodies[i];
   const Obb box = Obb::of(body);
+  guardStamp_[i] = ++stampCounter_;
   obbBounds(box, 0.0, guardLo_[i], guardHi_[i]);
   if (body.immovable) return;
   const Vec3 shift = (kGuardFactor * dt) * (body.v + gravityStep);
@@ -151,6 +152,7 @@ void ContactGathering::sweepCandidates(const World& world, const Vec3& gravitySt
   const std::size_t n = world.bodies.size();
   guardLo_.resize(n);
   guardHi_.resize(n);
+  guardStamp_.resize(n);
   for (std::size_t i = 0; i < n; ++i) setGuard(world, static_cast<int>(i), gravityStep, dt);
   candidates_.clear();
   hasCandidate_.assign(n, 0);
@@ -398,18 +400,34 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
   fast.clear();
   outgrown.clear();
   passReach_.assign(n, 0.0);
+  motion_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const RigidBody& body = world.bodies[i];
     if (body.immovable) continue;
-    // reach(), with the half diagonal and the bar of the slow bodies kept since the build.
-    const Vec3 u = body.v + gravityStep;
-    const double turn = dt * body.omega.norm() * halfDiagonal_[i];
-    const double r = dt * (u.norm() + body.omega.norm() * halfDiagonal_[i]);
+    // Reach and guard test depend on v and ω alone (and on the guard): with both bitwise as in
+    // the last pass they are what they were then.
+    PassMotion& motion = motion_[i];
+    if (!(motion.stamp > buildStamp_ && sameBits(motion.v, body.v) &&
+          sameBits(motion.omega, body.omega))) {
+      motion.v = body.v;
+      motion.omega = body.omega;
+      // reach(), with the half diagonal and the bar of the slow bodies kept since the build.
+      const Vec3 u = body.v + gravityStep;
+      motion.turn = dt * body.omega.norm() * halfDiagonal_[i];
+      motion.reach = dt * (u.norm() + body.omega.norm() * halfDiagonal_[i]);
+      motion.guardStamp = 0;
+      motion.stamp = ++stampCounter_;
+    }
+    const double r = motion.reach;
     passReach_[i] = r;
     if (!fast_[i] && r <= slowReach_[i]) continue;
     fast.push_back(static_cast<int>(i));
-    if (!withinGuard(body, static_cast<int>(i), Vec3(dt * u), turn))
-      outgrown.push_back(static_cast<int>(i));
+    if (motion.guardStamp != guardStamp_[i]) {
+      const Vec3 u = body.v + gravityStep;
+      motion.withinGuard = withinGuard(body, static_cast<int>(i), Vec3(dt * u), motion.turn);
+      motion.guardStamp = guardStamp_[i];
+    }
+    if (!motion.withinGuard) outgrown.push_back(static_cast<int>(i));
   }
   // The step's candidates hold every pair that can come near while each body moves less than
   // its growth; one that outgrew it needs its pairs found afresh, from the poses the bodies

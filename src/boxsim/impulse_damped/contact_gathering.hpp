@@ -233,6 +233,17 @@ class ContactGathering {
     /// only when greater than buildStamp_.
     std::uint64_t stamp = 0;
   };
+  /// What a pass works out from a body's velocities before moving it: its reach and whether
+  /// its predicted bounds stay inside its guard, kept while v and ω stay bitwise the same.
+  struct PassMotion {
+    Vec3 v, omega;            ///< the key
+    double reach = 0.0;       ///< m, Δt (|v'| + |ω| ρ)
+    double turn = 0.0;        ///< m, Δt |ω| ρ
+    bool withinGuard = false; ///< withinGuard's answer for the guard of guardStamp
+    std::uint64_t guardStamp = 0;  ///< the guard withinGuard was asked about; 0: not asked
+    std::uint64_t stamp = 0;  ///< valid when greater than buildStamp_
+  };
+
   /// Makes predicted_[i] hold what movePredicted would make of body i now (kept from an
   /// earlier pass when its key is unchanged); the body stays where it is.
   void preparePredicted(const RigidBody& body, int i, double dt, const Vec3& gravityStep);
@@ -271,6 +282,8 @@ class ContactGathering {
   std::vector<int> partners_;          ///< this pass: the slow partners moved
   std::vector<ImpulseContact> fastContacts_;  ///< this pass: the pairs with a fast body, by pair
   std::vector<PredictedPose> predicted_;  ///< per body: its last predicted pose in the step
+  std::vector<PassMotion> motion_;        ///< per body: its reach and guard test of the last pass
+  std::vector<std::uint64_t> guardStamp_;  ///< per body: a new stamp each time setGuard runs
   std::uint64_t stampCounter_ = 0;        ///< the last stamp handed out
   /// Per body, this pass: which pose it stands at, its predicted pose's stamp or, at its
   /// current pose, buildStamp_.
