@@ -94,10 +94,14 @@ namespace {
 /// A body's bounds in the step's sweep are stretched this many times its displacement in a
 /// pass along that displacement, so its velocity may grow this much along its way under the
 /// impulses of the step before its pairs are looked for again.
-constexpr double kGuardFactor = 2.0;
+constexpr double kGuardFactor = 1.5;
 /// ... and grown on every side by this fraction of that displacement (and kGuardFactor times
 /// what its spin can move a corner), for a velocity that turns.
-constexpr double kGuardSideways = 1.0;
+/// Only speed depends on the two: a smaller guard gives fewer candidates and a cheaper sweep,
+/// and more bodies that outgrow it and are tested again. On the clump of Fig. 6.7 (1000 cubes,
+/// callgrind) 1.5 and 0.5 took 6 % fewer instructions than 2 and 1, and fewer than 1.5 and 0.25
+/// or 1.25 and 0.25.
+constexpr double kGuardSideways = 0.5;
 /// Relative slack for rounding (obbBounds at two poses round differently, by a few ulp of the
 /// coordinates), times the size of the coordinates plus one metre.
 constexpr double kGuardRoundingSlack = 1e-9;
