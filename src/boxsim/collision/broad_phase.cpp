@@ -75,7 +75,11 @@ std::vector<std::pair<int, int>> candidatePairs(const World& world, const std::v
 }
 
 std::vector<ContactManifold> findContacts(const World& world, double margin) {
-  const std::vector<std::pair<int, int>> pairs = candidatePairs(world, margin);
+  return findContacts(world, margin, candidatePairs(world, margin));
+}
+
+std::vector<ContactManifold> findContacts(const World& world, double margin,
+                                          const std::vector<std::pair<int, int>>& pairs) {
   // Room for every candidate at once: in the scenes that make this costly, stacks at rest,
   // nearly every candidate touches, and growing the vector step by step would copy each
   // manifold several times.
@@ -105,6 +109,33 @@ std::pair<int, int> firstIntersectingPair(const World& world, double tolerance,
   return {-1, -1};
 }
 
+namespace {
+/// Up to this many moved bodies, refindContacts tests each against every body (O(n) apiece)
+/// instead of running the whole broad phase (a sweep costs about as much as this many).
+constexpr std::size_t kMaxDirectlyRefound = 64;
+
+/// The pairs of candidatePairs(world, margin) with a moved body, in the same order: each moved
+/// body tested against every other by the broad phases' own test on the same bounds.
+std::vector<std::pair<int, int>> movedPairs(const World& world, double margin,
+                                            const std::vector<char>& moved,
+                                            const std::vector<int>& movedBodies) {
+  const int n = static_cast<int>(world.bodies.size());
+  std::vector<Vec3> lo(n), hi(n);
+  for (int i = 0; i < n; ++i) obbBounds(Obb::of(world.bodies[i]), 0.0, lo[i], hi[i]);
+  std::vector<std::pair<int, int>> pairs;
+  for (int i : movedBodies)
+    for (int j = 0; j < n; ++j) {
+      // A pair of two moved bodies once, from its lower index.
+      if (j == i || (moved[j] && j < i)) continue;
+      if (world.bodies[i].immovable && world.bodies[j].immovable) continue;
+      if (boundsWithin(lo[i], hi[i], lo[j], hi[j], margin))
+        pairs.emplace_back(std::min(i, j), std::max(i, j));
+    }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+}  // namespace
+
 std::vector<ContactManifold> refindContacts(const World& world, double margin,
                                             const std::vector<ContactManifold>& before,
                                             const std::vector<char>& moved) {
@@ -118,7 +149,15 @@ std::vector<ContactManifold> refindContacts(const World& world, double margin,
     for (; k < before.size() && std::make_pair(before[k].a, before[k].b) < until; ++k)
       if (!moved[before[k].a] && !moved[before[k].b]) contacts.push_back(before[k]);
   };
-  for (const auto& [i, j] : candidatePairs(world, margin)) {
+  std::vector<int> movedBodies;
+  for (std::size_t i = 0; i < moved.size(); ++i)
+    if (moved[i]) movedBodies.push_back(static_cast<int>(i));
+  // Only the pairs with a moved body are looked at: with few moved bodies, finding just those
+  // is cheaper than the whole broad phase, and gives the same pairs in the same order.
+  const std::vector<std::pair<int, int>> pairs = movedBodies.size() <= kMaxDirectlyRefound
+                                                     ? movedPairs(world, margin, moved, movedBodies)
+                                                     : candidatePairs(world, margin);
+  for (const auto& [i, j] : pairs) {
     if (!moved[i] && !moved[j]) continue;
     keepBefore({i, j});
     ContactManifold m = collideBoxes(Obb::of(world.bodies[i]), Obb::of(world.bodies[j]), margin);

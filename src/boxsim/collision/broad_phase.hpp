@@ -61,13 +61,20 @@ std::vector<std::pair<int, int>> candidatePairs(const World& world, const std::v
 /// margin). The result does not depend on world.broadPhase. \thesis{§3.2}
 std::vector<ContactManifold> findContacts(const World& world, double margin = 0.0);
 
+/// findContacts with the broad phase's answer given: `pairs` must be candidatePairs(world,
+/// margin) (found some cheaper way, as ContactGathering::stepPairs does); collideBoxes runs on
+/// each. The same list as findContacts(world, margin). 	hesis{§3.2}
+std::vector<ContactManifold> findContacts(const World& world, double margin,
+                                          const std::vector<std::pair<int, int>>& pairs);
+
 /// findContacts(world, margin) after only some bodies moved: `before` is what findContacts
 /// returned with the same margin when every body stood where it stands now except those with
 /// moved[i] != 0. The pairs of two bodies that did not move keep their manifolds (the same
 /// poses give the same manifold, bit for bit); the broad and narrow phase run again for the
-/// pairs with a moved body (found by world.broadPhase). The same list as findContacts(world,
-/// margin), element for element, for the cost of a broad phase and the narrow phases of the
-/// moved bodies' pairs.
+/// pairs with a moved body (found by world.broadPhase, or, for a few moved bodies, by testing
+/// each against every body). The same list as findContacts(world, margin), element for
+/// element, for the cost of at most a broad phase and the narrow phases of the moved bodies'
+/// pairs.
 /// \param moved  one entry per body
 /// \throws std::invalid_argument unless moved has one entry per body
 std::vector<ContactManifold> refindContacts(const World& world, double margin,

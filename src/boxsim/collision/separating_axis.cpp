@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 namespace boxsim {
 namespace {
@@ -284,6 +285,18 @@ bool separatedBeyond(const Obb& a, const Obb& b, const SeparatingAxisResult& axi
   // Twice the tie width: once for the full test's preference of a tied face or a face over an
   // edge, once (with the relative term) for the rounding of these few operations.
   return depth + 2.0 * tieWidth + 1e-15 * std::abs(depth) <= -margin;
+}
+
+double depthAfterTranslationAtLeast(const Obb& a, const Obb& b, const SeparatingAxisResult& result,
+                                    double translation, const SeparatingAxisParams& params) {
+  if (!(result.depth > 0.0) || !std::isfinite(result.depth) || !(translation >= 0.0))
+    return -std::numeric_limits<double>::infinity();
+  const Vec3& ea = a.halfExtents;
+  const Vec3& eb = b.halfExtents;
+  const double tieWidth = params.faceTieTolerance * (ea.maxCoeff() + eb.maxCoeff());
+  const double scale = 1.0 + a.center.cwiseAbs().maxCoeff() + b.center.cwiseAbs().maxCoeff() +
+                       ea.sum() + eb.sum() + translation;
+  return result.depth * (1.0 - params.edgeBias) - tieWidth - translation - 1e-9 * scale;
 }
 
 }  // namespace boxsim

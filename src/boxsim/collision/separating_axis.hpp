@@ -68,4 +68,20 @@ SeparatingAxisResult separatingAxisTest(const Obb& a, const Obb& b,
 bool separatedBeyond(const Obb& a, const Obb& b, const SeparatingAxisResult& axis, double margin,
                      const SeparatingAxisParams& params = {});
 
+/// A lower bound (m) of separatingAxisTest(a', b', params).depth for boxes a' and b' that are a
+/// and b moved apart or together by a translation of length at most `translation` (m), their
+/// axes and extents unchanged, given `result` = separatingAxisTest(a, b, params); -infinity
+/// when result.depth <= 0 or is not finite (no claim).
+///
+/// Why it holds: along each tested axis (unit, or an edge axis divided by its length) the
+/// depth is a constant minus |axis . (c_b - c_a)|, so a translation changes it by at most its
+/// length; which edge axes are tested depends on the axes alone. The reported depth of
+/// overlapping boxes is at most the least tested depth widened by the relative edge bias and
+/// the face tie width (a face is kept unless an edge beats it by both), so every tested axis
+/// has depth >= depth (1 - edgeBias) - tie width, and so has every axis after the translation
+/// less its length; a relative 1e-9 of the coordinates covers the rounding of either test.
+/// FIXCONTACTCONSTRAINTS uses it to nudge a box many times between two tests.
+double depthAfterTranslationAtLeast(const Obb& a, const Obb& b, const SeparatingAxisResult& result,
+                                    double translation, const SeparatingAxisParams& params = {});
+
 }  // namespace boxsim

@@ -83,9 +83,12 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "boxsim/collision/contact.hpp"
+#include "boxsim/collision/obb.hpp"
 #include "boxsim/collision/separating_axis.hpp"
 #include "boxsim/core/world.hpp"
 #include "boxsim/impulse_damped/contact_normal.hpp"
@@ -152,6 +155,16 @@ class ContactGathering {
   /// are dropped (the step moves the bodies).
   void endStep();
 
+  /// candidatePairs(world, margin) for the bodies where they stand after the step's passes
+  /// (FIXCONTACTCONSTRAINTS, \alg{A.2} L5), taken from the step's candidates instead of a
+  /// broad phase: a pair of bodies whose bounds lie inside their bounds of the step's sweep
+  /// (setGuard) is a candidate if it passes the test at all (the sweep ran with a margin of
+  /// at least `margin`), and the few bodies outside theirs are tested against every body.
+  /// Returns false, leaving `pairs` as it was, when the step's candidates cannot tell:
+  /// EveryPass, no passes since endStep, bodies whose mobility changed since the sweep, a
+  /// margin wider than the sweep's, or many bodies outside their bounds.
+  bool stepPairs(const World& world, double margin, std::vector<std::pair<int, int>>& pairs) const;
+
   /// The normal model and its memory, for contacts gathered outside the passes.
   ContactNormalTracker& normals() { return normals_; }
   /// Narrow phases run since construction (OncePerStep: cache builds), for tests and benches.
@@ -194,13 +207,14 @@ class ContactGathering {
   /// The contact of bodies i < j from their manifold m (the normal model's choice); false
   /// when m has no point.
   bool contactOf(const World& world, int i, int j, ContactManifold m, ImpulseContact& contact);
-  /// exactContact for a pair of the step's candidates, trying its last separating axis first
-  /// and remembering the axis of this test.
-  bool candidateContact(const World& world, std::size_t candidate, double margin,
-                        ImpulseContact& contact);
-  /// The step's candidate pairs: one sweep over every body's bounds from setGuard; bodies
-  /// must stand at their current poses.
-  void sweepCandidates(const World& world, const Vec3& gravityStep, double dt, double margin);
+  /// The narrow phase of a pair of the step's candidates where its bodies stand, trying its
+  /// last separating axis first and remembering the axis of this test; false (manifold left
+  /// as it was) when they do not touch within the margin.
+  bool candidateManifold(const World& world, std::size_t candidate, double margin,
+                         ContactManifold& manifold);
+  /// The step's candidate pairs: one sweep over every body's bounds from setGuard, with
+  /// sweepMargin_; bodies must stand at their current poses.
+  void sweepCandidates(const World& world, const Vec3& gravityStep, double dt);
   /// Sets body i's bounds for the step's sweep from its current pose and velocities: its
   /// bounds stretched along kGuardFactor times its displacement in a pass and grown sideways,
   /// holding its bounds grown by the slow widening.
@@ -210,28 +224,73 @@ class ContactGathering {
   bool withinGuard(const RigidBody& body, int i, const Vec3& displacement, double turn) const;
   /// Gives the `outgrown` bodies bounds for their current velocities and adds the
   /// candidates that brings (bodies at their current poses).
-  void growCandidates(const World& world, const Vec3& gravityStep, double dt, double margin,
+  void growCandidates(const World& world, const Vec3& gravityStep, double dt,
                       const std::vector<int>& outgrown);
 
   /// A pair that may come within the margin during the step, with the axis that last
-  /// separated it (separatedBeyond), if any.
+  /// separated it (separatedBeyond), if any, and the answer of its last pass.
   struct Candidate {
     int a;                      ///< body index, a < b
     int b;                      ///< body index
     SeparatingAxisResult axis;  ///< kind and indices of the last test's axis
     bool apart;                 ///< the last test found no contact within the margin
+    /// The poses (poseStamp_) a and b stood at in the pass that last looked at the pair; 0:
+    /// never looked at. When both are the same in a later pass, so is the answer.
+    std::uint64_t stampA = 0, stampB = 0;
+    /// The manifold found then (index into manifolds_), or -1: no contact within the margin.
+    int manifold = -1;
   };
+
+  /// A fast body's predicted pose in a pass (A.2 L2) with what it was computed from. Between
+  /// two passes of a step a body's current pose does not change, so while its momenta and
+  /// velocities stay bitwise the same (no impulse of the passes reached it) its predicted pose
+  /// does too and is copied instead of recomputed.
+  struct PredictedPose {
+    Vec3 P, L, v, omega;  ///< the key: momenta and velocities at the current pose
+    Vec3 x;               ///< m, predicted
+    Quat q;               ///< predicted
+    Mat3 R, Iinv;         ///< derived at the predicted pose
+    Vec3 vPredicted, omegaPredicted;  ///< velocities movePredicted leaves (ω = I⁻¹' L)
+    Vec3 lo, hi;          ///< bounds at the predicted pose (obbBounds, margin 0), m
+    /// Identifies this pose (the poseStamp_ of a body standing at it); valid in this cache
+    /// only when greater than buildStamp_.
+    std::uint64_t stamp = 0;
+  };
+  /// What a pass works out from a body's velocities before moving it: its reach and whether
+  /// its predicted bounds stay inside its guard, kept while v and ω stay bitwise the same.
+  struct PassMotion {
+    Vec3 v, omega;            ///< the key
+    double reach = 0.0;       ///< m, Δt (|v'| + |ω| ρ)
+    double turn = 0.0;        ///< m, Δt |ω| ρ
+    bool withinGuard = false; ///< withinGuard's answer for the guard of guardStamp
+    std::uint64_t guardStamp = 0;  ///< the guard withinGuard was asked about; 0: not asked
+    std::uint64_t stamp = 0;  ///< valid when greater than buildStamp_
+  };
+
+  /// Makes predicted_[i] hold what movePredicted would make of body i now (kept from an
+  /// earlier pass when its key is unchanged); the body stays where it is.
+  void preparePredicted(const RigidBody& body, int i, double dt, const Vec3& gravityStep);
+  /// Moves body i to its predicted pose of this pass (predicted_[i]), remembering where it
+  /// stood, if it stands at that pose for this pass (moved_ or partner_) and is not there yet.
+  void place(World& world, int i);
+  /// Body i's box where it stands in this pass: at its predicted pose (moved_ or partner_),
+  /// placed or not, else where it is.
+  Obb passBox(const World& world, int i) const;
 
   ImpulseParams params_;
   ContactNormalTracker normals_;
   std::vector<ImpulseContact> contacts_;
-  SavedPoses saved_;             ///< poses before the pass, of the bodies in moved_
-  std::vector<char> moved_;      ///< per body: moved to its predicted pose for this pass
+  SavedPoses saved_;             ///< poses before the pass, of the bodies placed_
+  std::vector<char> moved_;      ///< per body: a fast body standing at its predicted pose
+  std::vector<char> placed_;     ///< per body: actually moved there (place), saved_ holds its pose
   bool cached_ = false;
   std::vector<CachedPair> pairs_;
   std::vector<char> immovable_;   ///< each body's mobility when the cache was built
   std::vector<char> fast_;        ///< per body: fast when the cache was built, so not in it
   double cacheMargin_ = 0.0;
+  /// m: the margin of the step's sweep, the passes' margin widened by g Δt², the width
+  /// restingContactMargin adds, so stepPairs covers FIXCONTACTCONSTRAINTS' contacts too.
+  double sweepMargin_ = 0.0;
   long narrowPhases_ = 0;
   std::vector<Candidate> candidates_;  ///< in increasing (a, b) order
   std::vector<double> halfDiagonal_;   ///< m, per body: |h|, the ρ of reach()
@@ -241,11 +300,23 @@ class ContactGathering {
   std::vector<int> outgrown_;          ///< this pass: fast bodies that outgrew their bounds
   std::vector<int> fastBodies_;        ///< this pass: bodies fast now or at the cache's build
   std::vector<char> hasCandidate_;     ///< per body: in at least one candidate pair
-  std::vector<Vec3> predictedLo_, predictedHi_;  ///< bounds where each body stands in this pass
   std::vector<double> passReach_;      ///< m, per movable body: its reach in this pass
-  std::vector<char> partner_;          ///< per body: a slow partner moved for the narrow phase
+  std::vector<char> partner_;          ///< per body: a slow partner standing at its predicted pose for the narrow phase
   std::vector<int> partners_;          ///< this pass: the slow partners moved
   std::vector<ImpulseContact> fastContacts_;  ///< this pass: the pairs with a fast body, by pair
+  std::vector<PredictedPose> predicted_;  ///< per body: its last predicted pose in the step
+  std::vector<PassMotion> motion_;        ///< per body: its reach and guard test of the last pass
+  std::vector<std::uint64_t> guardStamp_;  ///< per body: a new stamp each time setGuard runs
+  std::uint64_t stampCounter_ = 0;        ///< the last stamp handed out
+  /// Per body, this pass: which pose it stands at, its predicted pose's stamp or, at its
+  /// current pose, buildStamp_.
+  std::vector<std::uint64_t> poseStamp_;
+  /// The stamp of the current poses since the last build of the cache; predicted poses with
+  /// smaller stamps are from before it and invalid.
+  std::uint64_t buildStamp_ = 0;
+  Vec3 predictedGravity_ = Vec3::Zero();  ///< the g Δt and Δt the predicted poses are for
+  double predictedDt_ = 0.0;
+  std::vector<ContactManifold> manifolds_;  ///< the candidates' last manifolds (Candidate)
 };
 
 }  // namespace boxsim

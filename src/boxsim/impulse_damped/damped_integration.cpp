@@ -114,15 +114,20 @@ StepStats DampedIntegrationStepper::step(World& world, double dt) {
   const double restingMargin = restingContactMargin(world, margin, dt);
   // L5: FIXCONTACTCONSTRAINTS; sleeping bodies still stand in as immovable, so none moves.
   std::vector<ContactManifold> contacts;
+  // The broad phase of these contacts, from the step's candidates when they cover it.
+  std::vector<std::pair<int, int>> pairs;
+  const bool havePairs = gathering_.stepPairs(world, restingMargin, pairs);
   if (!params_.fixContactConstraints) {
-    contacts = findContacts(world, restingMargin);
+    contacts = havePairs ? findContacts(world, restingMargin, pairs)
+                         : findContacts(world, restingMargin);
   } else {
     // Nudging moves x alone: the bodies it moved are those whose x changed.
     std::vector<Vec3> before(n);
     for (std::size_t i = 0; i < n; ++i) before[i] = world.bodies[i].s.x;
     // L6: SETGEOMETRICALLYSTABLE, for the next step's COLLIDE L11-L14, needs the contacts
     // after L5: those it found, with the pairs of the bodies it nudged found again.
-    if (fixContactConstraints(world, restingMargin, params_.fixContacts, dt, &contacts) > 0) {
+    if (fixContactConstraints(world, restingMargin, params_.fixContacts, dt, &contacts,
+                              havePairs ? &pairs : nullptr) > 0) {
       std::vector<char> nudged(n, 0);
       for (std::size_t i = 0; i < n; ++i)
         nudged[i] = static_cast<char>(world.bodies[i].s.x != before[i]);

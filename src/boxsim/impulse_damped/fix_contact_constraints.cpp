@@ -20,9 +20,11 @@ double fixLiftLimit(const RigidBody& body, const FixContactParams& params, const
 }
 
 int fixContactConstraints(World& world, double margin, const FixContactParams& params, double dt,
-                          std::vector<ContactManifold>* gathered) {
+                          std::vector<ContactManifold>* gathered,
+                          const std::vector<std::pair<int, int>>* pairs) {
   // A.2 L1: sortContactPointsAscending.
-  std::vector<ContactManifold> contacts = findContacts(world, margin);
+  std::vector<ContactManifold> contacts =
+      pairs ? findContacts(world, margin, *pairs) : findContacts(world, margin);
   if (gathered) *gathered = contacts;
   const auto key = [](const ContactManifold& m) { return std::make_tuple(m.centroid().y(), m.a, m.b); };
   std::stable_sort(contacts.begin(), contacts.end(),
@@ -39,12 +41,26 @@ int fixContactConstraints(World& world, double margin, const FixContactParams& p
     const double ell = moving.halfExtents.minCoeff();
     const Obb stable = Obb::of(world.bodies[lower]);
     // A.2 L6-L7: nudge while they still intersect (beyond the documented slop).
-    const double step = params.nudge * ell;
-    const auto limit = static_cast<long>(std::ceil(fixLiftLimit(moving, params, world.gravity, dt) / step));
-    for (long n = 0; n < limit; ++n) {
-      if (separatingAxisTest(Obb::of(moving), stable).depth <= params.slop * ell) break;
-      moving.s.x += step * offset;  // x alone: nothing derived changes
-      ++nudges;
+    const double slop = params.slop * ell;
+    const double step = params.nudge * ell;  // m, the length of one nudge (|offset| = 1)
+    const auto limit =
+        static_cast<long>(std::ceil(fixLiftLimit(moving, params, world.gravity, dt) / step));
+    long n = 0;
+    while (n < limit) {
+      const Obb box = Obb::of(moving);
+      const SeparatingAxisResult sat = separatingAxisTest(box, stable);
+      if (sat.depth <= slop) break;
+      // One nudge, then more while the test before each is certain to find the pair still
+      // deeper than the slop (depthAfterTranslationAtLeast, 1.01 for |offset| = 1 up to
+      // rounding): those tests are left out, the nudges are the same additions, and the
+      // loop stops where A.2 L6-L7 would.
+      int k = 0;
+      do {
+        moving.s.x += step * offset;  // x alone: nothing derived changes
+        ++nudges;
+        ++n;
+        ++k;
+      } while (n < limit && depthAfterTranslationAtLeast(box, stable, sat, 1.01 * step * k) > slop);
     }
   }
   return nudges;

@@ -4,6 +4,7 @@
 /// so no kinetic energy is added (the thesis' change to Guendelman et al.'s shock step).
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include "boxsim/collision/contact.hpp"
@@ -34,7 +35,10 @@ double fixLiftLimit(const RigidBody& body, const FixContactParams& params, const
 /// with no nudge made they are the contacts of the world as it is left, which saves the caller
 /// a narrow phase.
 /// \return the number of nudges made.
+/// `pairs`, when given, is candidatePairs(world, margin) found by the caller (the contact
+/// gathering's step candidates, ContactGathering::stepPairs), which spares the broad phase.
 int fixContactConstraints(World& world, double margin, const FixContactParams& params, double dt,
-                          std::vector<ContactManifold>* gathered = nullptr);
+                          std::vector<ContactManifold>* gathered = nullptr,
+                          const std::vector<std::pair<int, int>>* pairs = nullptr);
 
 }  // namespace boxsim
