@@ -118,7 +118,9 @@ bool sameBits(const Vec3& a, const Vec3& b) {
 }
 
 /// Up to this many bodies outgrowing their bounds in a pass are each tested against every
-/// body (O(n) apiece); more, and the whole sweep is redone.
+/// body (O(n) apiece); more, and the whole sweep is redone, with every body's stretch
+/// (kGuardFactor) doubled for the rest of the step: a step whose impulses turned that many
+/// bodies will turn them again in its later passes.
 constexpr std::size_t kMaxDirectlyGrown = 128;
 }  // namespace
 
@@ -128,9 +130,10 @@ void ContactGathering::setGuard(const World& world, int i, const Vec3& gravitySt
   guardStamp_[i] = ++stampCounter_;
   obbBounds(box, 0.0, guardLo_[i], guardHi_[i]);
   if (body.immovable) return;
-  const Vec3 shift = (kGuardFactor * dt) * (body.v + gravityStep);
-  const double spin = kGuardFactor * dt * body.omega.norm() * halfDiagonal_[i];
-  const double sideways = kGuardSideways * shift.norm() / kGuardFactor + spin;
+  const double factor = kGuardFactor * guardScale_;
+  const Vec3 shift = (factor * dt) * (body.v + gravityStep);
+  const double spin = factor * dt * body.omega.norm() * halfDiagonal_[i];
+  const double sideways = kGuardSideways * shift.norm() / factor + spin;
   guardLo_[i] = guardLo_[i].cwiseMin(guardLo_[i] + shift) - Vec3::Constant(sideways);
   guardHi_[i] = guardHi_[i].cwiseMax(guardHi_[i] + shift) + Vec3::Constant(sideways);
   // The slow pairs come from these bounds too: they must hold the slow widening's, bit for bit.
@@ -171,6 +174,7 @@ void ContactGathering::growCandidates(const World& world, const Vec3& gravitySte
   const int n = static_cast<int>(world.bodies.size());
   // Many at once (a clump's first impact): one sweep is cheaper than testing each against all.
   if (outgrown.size() > kMaxDirectlyGrown) {
+    guardScale_ *= 2.0;
     sweepCandidates(world, gravityStep, dt);
     return;
   }
@@ -234,6 +238,7 @@ void ContactGathering::buildCache(const World& world, const Vec3& gravityStep, d
   // pairs FIXCONTACTCONSTRAINTS looks at after the passes (stepPairs), whose margin
   // (restingContactMargin) is wider by g Δt².
   sweepMargin_ = margin + world.gravity.norm() * dt * dt;
+  guardScale_ = 1.0;
   sweepCandidates(world, gravityStep, dt);
   // One narrow phase at the current poses for the slow pairs, each body widened by more than a
   // slow body can move (slowWidening >= exactReach): the pairs the broad phase

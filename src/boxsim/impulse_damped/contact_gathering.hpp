@@ -308,6 +308,7 @@ class ContactGathering {
   std::vector<PassMotion> motion_;        ///< per body: its reach and guard test of the last pass
   std::vector<std::uint64_t> guardStamp_;  ///< per body: a new stamp each time setGuard runs
   std::uint64_t stampCounter_ = 0;        ///< the last stamp handed out
+  double guardScale_ = 1.0;  ///< this step's stretch of the swept bounds, times kGuardFactor
   /// Per body, this pass: which pose it stands at, its predicted pose's stamp or, at its
   /// current pose, buildStamp_.
   std::vector<std::uint64_t> poseStamp_;
