@@ -14,7 +14,6 @@
 
 namespace boxsim {
 
-
 std::string contactGatheringName(ContactGatheringMode mode) {
   switch (mode) {
     case ContactGatheringMode::EveryPass: return "every_pass";
@@ -91,126 +90,12 @@ bool ContactGathering::cacheCovers(const World& world) const {
 }
 
 namespace {
-/// A body's bounds in the step's sweep are stretched this many times its displacement in a
-/// pass along that displacement, so its velocity may grow this much along its way under the
-/// impulses of the step before its pairs are looked for again.
-constexpr double kGuardFactor = 1.5;
-/// ... and grown on every side by this fraction of that displacement (and kGuardFactor times
-/// what its spin can move a corner), for a velocity that turns.
-/// Only speed depends on the two: a smaller guard gives fewer candidates and a cheaper sweep,
-/// and more bodies that outgrow it and are tested again. On the clump of Fig. 6.7 (1000 cubes,
-/// callgrind) 1.5 and 0.5 took 6 % fewer instructions than 2 and 1, and fewer than 1.5 and 0.25
-/// or 1.25 and 0.25.
-constexpr double kGuardSideways = 0.5;
-/// Relative slack for rounding (obbBounds at two poses round differently, by a few ulp of the
-/// coordinates), times the size of the coordinates plus one metre.
-constexpr double kGuardRoundingSlack = 1e-9;
-
-/// The rounding allowance of a bounds test on a body at x with half diagonal ρ (m): bounds
-/// computed at two poses differ from the exact motion by rounding of order |x| + ρ.
-double roundingSlack(const RigidBody& body, double halfDiagonal) {
-  return kGuardRoundingSlack * (1.0 + body.s.x.cwiseAbs().maxCoeff() + halfDiagonal);
-}
 /// Whether two vectors hold the same doubles bit for bit (so -0 differs from 0, and a NaN
 /// equals itself): the test for reusing a value computed from them.
 bool sameBits(const Vec3& a, const Vec3& b) {
   return std::memcmp(a.data(), b.data(), 3 * sizeof(double)) == 0;
 }
-
-/// Up to this many bodies outgrowing their bounds in a pass are each tested against every
-/// body (O(n) apiece); more, and the whole sweep is redone, with every body's stretch
-/// (kGuardFactor) doubled for the rest of the step: a step whose impulses turned that many
-/// bodies will turn them again in its later passes.
-constexpr std::size_t kMaxDirectlyGrown = 128;
 }  // namespace
-
-void ContactGathering::setGuard(const World& world, int i, const Vec3& gravityStep, double dt) {
-  const RigidBody& body = world.bodies[i];
-  const Obb box = Obb::of(body);
-  guardStamp_[i] = ++stampCounter_;
-  obbBounds(box, 0.0, guardLo_[i], guardHi_[i]);
-  if (body.immovable) return;
-  const double factor = kGuardFactor * guardScale_;
-  const Vec3 shift = (factor * dt) * (body.v + gravityStep);
-  const double spin = factor * dt * body.omega.norm() * halfDiagonal_[i];
-  const double sideways = kGuardSideways * shift.norm() / factor + spin;
-  guardLo_[i] = guardLo_[i].cwiseMin(guardLo_[i] + shift) - Vec3::Constant(sideways);
-  guardHi_[i] = guardHi_[i].cwiseMax(guardHi_[i] + shift) + Vec3::Constant(sideways);
-  // The slow pairs come from these bounds too: they must hold the slow widening's, bit for bit.
-  Vec3 slowLo, slowHi;
-  obbBounds(box, params_.slowWidening * body.halfExtents.minCoeff(), slowLo, slowHi);
-  guardLo_[i] = guardLo_[i].cwiseMin(slowLo);
-  guardHi_[i] = guardHi_[i].cwiseMax(slowHi);
-}
-
-bool ContactGathering::withinGuard(const RigidBody& body, int i, const Vec3& displacement,
-                                   double turn) const {
-  // At the predicted pose the bounds are the current ones moved by the displacement and, as a
-  // corner moves at most |ω| Δt ρ when the body turns, grown by at most that, up to rounding.
-  const double slack = turn + roundingSlack(body, halfDiagonal_[i]);
-  for (int k = 0; k < 3; ++k)
-    if (!(lo_[i][k] + displacement[k] - slack >= guardLo_[i][k] &&
-          hi_[i][k] + displacement[k] + slack <= guardHi_[i][k]))
-      return false;
-  return true;
-}
-
-void ContactGathering::sweepCandidates(const World& world, const Vec3& gravityStep, double dt) {
-  const std::size_t n = world.bodies.size();
-  guardLo_.resize(n);
-  guardHi_.resize(n);
-  guardStamp_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) setGuard(world, static_cast<int>(i), gravityStep, dt);
-  candidates_.clear();
-  hasCandidate_.assign(n, 0);
-  for (const auto& [i, j] : candidatePairs(world, guardLo_, guardHi_, sweepMargin_)) {
-    candidates_.push_back(Candidate{i, j, SeparatingAxisResult{}, false});
-    hasCandidate_[i] = hasCandidate_[j] = 1;
-  }
-}
-
-void ContactGathering::growCandidates(const World& world, const Vec3& gravityStep, double dt,
-                                      const std::vector<int>& outgrown) {
-  const int n = static_cast<int>(world.bodies.size());
-  // Many at once (a clump's first impact): one sweep is cheaper than testing each against all.
-  if (outgrown.size() > kMaxDirectlyGrown) {
-    guardScale_ *= 2.0;
-    sweepCandidates(world, gravityStep, dt);
-    return;
-  }
-  std::vector<char> isOutgrown(world.bodies.size(), 0);
-  for (int i : outgrown) {
-    setGuard(world, i, gravityStep, dt);
-    isOutgrown[i] = 1;
-  }
-  // Each outgrown body against every other, by the sweep's test on the new bounds (a pair of
-  // two outgrown bodies once, from its lower index).
-  std::vector<std::pair<int, int>> found;
-  for (int i : outgrown)
-    for (int j = 0; j < n; ++j) {
-      if (j == i || (isOutgrown[j] && j < i)) continue;
-      if (world.bodies[i].immovable && world.bodies[j].immovable) continue;
-      if (boundsWithin(guardLo_[i], guardHi_[i], guardLo_[j], guardHi_[j], sweepMargin_)) {
-        found.emplace_back(std::min(i, j), std::max(i, j));
-        hasCandidate_[i] = hasCandidate_[j] = 1;
-      }
-    }
-  std::sort(found.begin(), found.end());
-  // Merged into the (a, b) order; pairs already listed keep what they remember of their axis.
-  std::vector<Candidate> merged;
-  merged.reserve(candidates_.size() + found.size());
-  std::size_t f = 0;
-  for (const Candidate& c : candidates_) {
-    const std::pair<int, int> key(c.a, c.b);
-    for (; f < found.size() && found[f] < key; ++f)
-      merged.push_back(Candidate{found[f].first, found[f].second, SeparatingAxisResult{}, false});
-    if (f < found.size() && found[f] == key) ++f;
-    merged.push_back(c);
-  }
-  for (; f < found.size(); ++f)
-    merged.push_back(Candidate{found[f].first, found[f].second, SeparatingAxisResult{}, false});
-  candidates_.swap(merged);
-}
 
 void ContactGathering::buildCache(const World& world, const Vec3& gravityStep, double dt,
                                   double margin) {
@@ -589,46 +474,6 @@ bool ContactGathering::candidateManifold(const World& world, std::size_t k, doub
   candidate.axis = sat;
   candidate.apart = manifold.count == 0;
   return manifold.count > 0;
-}
-
-bool ContactGathering::stepPairs(const World& world, double margin,
-                                 std::vector<std::pair<int, int>>& pairs) const {
-  if (params_.gathering != ContactGatheringMode::OncePerStep || !cacheCovers(world) ||
-      !(margin <= sweepMargin_) || guardLo_.size() != world.bodies.size())
-    return false;
-  const std::size_t n = world.bodies.size();
-  std::vector<Vec3> lo(n), hi(n);
-  std::vector<char> outside(n, 0);
-  std::vector<int> outsiders;
-  for (std::size_t i = 0; i < n; ++i) {
-    obbBounds(Obb::of(world.bodies[i]), 0.0, lo[i], hi[i]);
-    // Inside, bound for bound: then guardLo_[b] - guardHi_[a] <= lo[b] - hi[a] in floating
-    // point too (subtraction rounds monotonically), so a pair within the margin here was
-    // within the sweep's margin there, and is a candidate. NaN bounds count as outside.
-    if (!((lo[i].array() >= guardLo_[i].array()).all() &&
-          (hi[i].array() <= guardHi_[i].array()).all())) {
-      outside[i] = 1;
-      outsiders.push_back(static_cast<int>(i));
-    }
-  }
-  if (outsiders.size() > kMaxDirectlyGrown) return false;
-  std::vector<std::pair<int, int>> found;
-  for (const Candidate& c : candidates_)
-    if (!outside[c.a] && !outside[c.b] && boundsWithin(lo[c.a], hi[c.a], lo[c.b], hi[c.b], margin))
-      found.emplace_back(c.a, c.b);
-  // The bodies outside their bounds against every body, as the broad phase would test them (a
-  // pair of two such bodies once, from its lower index).
-  for (int i : outsiders)
-    for (std::size_t jj = 0; jj < n; ++jj) {
-      const int j = static_cast<int>(jj);
-      if (j == i || (outside[jj] && j < i)) continue;
-      if (world.bodies[i].immovable && world.bodies[jj].immovable) continue;
-      if (boundsWithin(lo[i], hi[i], lo[jj], hi[jj], margin))
-        found.emplace_back(std::min(i, j), std::max(i, j));
-    }
-  if (!outsiders.empty()) std::sort(found.begin(), found.end());
-  pairs.swap(found);
-  return true;
 }
 
 void ContactGathering::end(World&) {

@@ -219,6 +219,9 @@ class ContactGathering {
   /// bounds stretched along kGuardFactor times its displacement in a pass and grown sideways,
   /// holding its bounds grown by the slow widening.
   void setGuard(const World& world, int i, const Vec3& gravityStep, double dt);
+  /// m: the rounding allowance of a bounds test on a body at x with half diagonal ρ (m):
+  /// bounds computed at two poses differ from the exact motion by rounding of order |x| + ρ.
+  static double roundingSlack(const RigidBody& body, double halfDiagonal);
   /// Whether body i, moved by `displacement` (m) and turned so that no corner moves more than
   /// `turn` (m), stays inside its bounds for the sweep.
   bool withinGuard(const RigidBody& body, int i, const Vec3& displacement, double turn) const;
