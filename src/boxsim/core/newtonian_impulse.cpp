@@ -2,14 +2,14 @@
 
 namespace boxsim {
 
-double relativeNormalVelocity(const RigidBody& a, const RigidBody& b, const Vec3& p,
-                              const Vec3& n) {
-  return n.dot(b.pointVelocity(p) - a.pointVelocity(p));
-}
-
 double relativeNormalVelocity(const RigidBody& a, const RigidBody& b, const Vec3& ra,
                               const Vec3& rb, const Vec3& n) {
   return n.dot((b.v + b.omega.cross(rb)) - (a.v + a.omega.cross(ra)));
+}
+
+double relativeNormalVelocity(const RigidBody& a, const RigidBody& b, const Vec3& p,
+                              const Vec3& n) {
+  return relativeNormalVelocity(a, b, Vec3(p - a.s.x), Vec3(p - b.s.x), n);
 }
 
 double applyNewtonianImpulse(RigidBody& a, RigidBody& b, const Vec3& p, const Vec3& n,

@@ -80,9 +80,9 @@ void ContactNormalTracker::remember(const World& world, const ContactManifold& m
 
 ImpulseContact ContactNormalTracker::contactOf(const World& world, const ContactManifold& m,
                                                bool record) {
-  ImpulseContact c{m.a, m.b, m.centroid(), m.normal, m.depth, Vec3::Zero(), Vec3::Zero()};
-  c.ra = c.point - world.bodies[m.a].s.x;
-  c.rb = c.point - world.bodies[m.b].s.x;
+  const Vec3 p = m.centroid();
+  ImpulseContact c{m.a,    m.b, p, m.normal, m.depth, Vec3(p - world.bodies[m.a].s.x),
+                   Vec3(p - world.bodies[m.b].s.x)};
   switch (model_) {
     case ContactNormalModel::SeparatingAxis:
       break;
