@@ -415,6 +415,12 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
       place(world, b);
       if (contactOf(world, a, b, std::move(m), c)) fastContacts_.push_back(c);
     }
+  // The pairs growCandidates added come after the sweep's: into the (a, b) order.
+  if (candidates_.size() > sweptCandidates_)
+    std::sort(fastContacts_.begin(), fastContacts_.end(),
+              [](const ImpulseContact& x, const ImpulseContact& y) {
+                return std::pair<int, int>(x.a, x.b) < std::pair<int, int>(y.a, y.b);
+              });
   // DEVIATION(A.2 L6): every body goes back before COLLIDE, the fast ones too, with its
   // velocities recomputed exactly as they were: the slow pairs' prediction below and COLLIDE see
   // every body where it stands, and each fast contact keeps the lever arms it was found with

@@ -26,7 +26,8 @@
 ///     the pairs that can come near in the step; each pass applies the broad phase's own test
 ///     (boundsWithin at the pass' poses) to that list alone. A body whose predicted bounds would
 ///     leave its stretched ones (an impulse turned or sped it up) gets new ones and is tested
-///     against every body (or, when many leave theirs at once, the broad phase is redone). A fast
+///     against the bodies whose stretched bounds, sorted along x, come near its new ones (or,
+///     when many leave theirs at once, the broad phase is redone). A fast
 ///     body in no candidate pair touches nothing in the step, so it is not moved at all. The narrow
 ///     phase of a pair that was apart in its last pass first looks along the axis that separated it
 ///     (separatedBeyond), which decides most pairs of a flying clump with one axis instead of
@@ -229,6 +230,13 @@ class ContactGathering {
   /// candidates that brings (bodies at their current poses).
   void growCandidates(const World& world, const Vec3& gravityStep, double dt,
                       const std::vector<int>& outgrown);
+  /// Sorts the bodies' bounds for the step's sweep (guardLo_, guardHi_) into guardIndex_.
+  void indexGuards(const World& world);
+  /// Calls visit(j) for every body j whose bounds for the sweep may lie within `margin` (m) of
+  /// [lo, hi] (m) along every axis, from guardIndex_: a superset of the bodies boundsWithin
+  /// passes, some perhaps twice, never one it fails along x.
+  template <class Visit>
+  void forGuardsNear(const Vec3& lo, const Vec3& hi, double margin, const Visit& visit) const;
 
   /// A pair that may come within the margin during the step, with the axis that last
   /// separated it (separatedBeyond), if any, and the answer of its last pass.
@@ -242,6 +250,20 @@ class ContactGathering {
     std::uint64_t stampA = 0, stampB = 0;
     /// The manifold found then (index into manifolds_), or -1: no contact within the margin.
     int manifold = -1;
+  };
+
+  /// The bodies' bounds for the step's sweep sorted along x, so growCandidates finds a
+  /// body's neighbours by one binary search and a scan of a slab instead of testing every
+  /// body. Sorted when first needed after a sweep; bounds set again since (setGuard) are listed
+  /// in `regrown` and tested directly, as are the bodies in `direct`.
+  struct GuardIndex {
+    bool valid = false;
+    std::uint64_t stamp = 0;   ///< stampCounter_ when sorted: guardStamp_ above it is newer
+    std::vector<int> order;    ///< bodies by guardLo_.x
+    std::vector<double> lo;    ///< m, guardLo_.x in that order
+    std::vector<double> maxHi; ///< m, the largest guardHi_.x up to each place in that order
+    std::vector<int> direct;   ///< wide immovable bodies and bounds that are not finite
+    std::vector<int> regrown;  ///< bodies whose bounds were set again since the sort
   };
 
   /// A fast body's predicted pose in a pass (A.2 L2) with what it was computed from. Between
@@ -295,12 +317,18 @@ class ContactGathering {
   /// restingContactMargin adds, so stepPairs covers FIXCONTACTCONSTRAINTS' contacts too.
   double sweepMargin_ = 0.0;
   long narrowPhases_ = 0;
-  std::vector<Candidate> candidates_;  ///< in increasing (a, b) order
+  /// The sweep's pairs in increasing (a, b) order, then those growCandidates added since, in
+  /// the order it added them.
+  std::vector<Candidate> candidates_;
+  std::size_t sweptCandidates_ = 0;    ///< how many of candidates_ the sweep found
+  std::vector<std::pair<int, int>> grownKeys_;  ///< the pairs added since, sorted
   std::vector<double> halfDiagonal_;   ///< m, per body: |h|, the ρ of reach()
   std::vector<double> slowReach_;      ///< m, per body: exactReach ℓ, the slow bodies' bar
   std::vector<Vec3> lo_, hi_;          ///< bounds at the current poses (obbBounds, margin 0)
   std::vector<Vec3> guardLo_, guardHi_;  ///< bounds in the step's sweep (setGuard)
   std::vector<int> outgrown_;          ///< this pass: fast bodies that outgrew their bounds
+  std::vector<char> isOutgrown_;       ///< per body, in growCandidates: in outgrown_
+  GuardIndex guardIndex_;              ///< guardLo_, guardHi_ sorted (growCandidates)
   std::vector<int> fastBodies_;        ///< this pass: bodies fast now or at the cache's build
   std::vector<char> hasCandidate_;     ///< per body: in at least one candidate pair
   std::vector<double> passReach_;      ///< m, per movable body: its reach in this pass
