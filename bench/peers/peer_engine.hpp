@@ -73,7 +73,9 @@ class PeerEngine {
   virtual void read(std::vector<PeerPose>& poses) const = 0;
 };
 
-/// boxsim under one of its methods (techniques.hpp), e.g. "damped".
+/// boxsim under one of its methods (techniques.hpp), e.g. "damped", or a method with a contact
+/// gathering (impulse_params.hpp) after a slash, e.g. "damped/speculative". Throws
+/// std::invalid_argument naming an unknown method or gathering.
 std::unique_ptr<PeerEngine> makeBoxsimEngine(const std::string& method);
 #ifdef BOXSIM_HAVE_BULLET
 /// Bullet's btDiscreteDynamicsWorld with its default solver (sequential impulse).

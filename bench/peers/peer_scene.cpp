@@ -44,9 +44,21 @@ namespace {
 /// boxsim itself, through the same Stepper interface the command line uses.
 class BoxsimEngine : public PeerEngine {
  public:
-  explicit BoxsimEngine(const std::string& method)
-      : method_(method), stepper_(makeStepper(method)) {}
-  std::string name() const override { return "boxsim " + method_; }
+  /// `engine` is a method, optionally with a contact gathering after a slash:
+  /// "damped/speculative".
+  explicit BoxsimEngine(const std::string& engine) {
+    const std::size_t slash = engine.find('/');
+    method_ = engine.substr(0, slash);
+    TechniqueOptions options;
+    if (slash != std::string::npos) {
+      gathering_ = engine.substr(slash + 1);
+      options.contactGathering = parseContactGathering(gathering_);
+    }
+    stepper_ = makeStepper(method_, options);
+  }
+  std::string name() const override {
+    return "boxsim " + method_ + (gathering_.empty() ? "" : " " + gathering_);
+  }
   std::string settings() const override {
     std::string text;
     for (const auto& [key, value] : stepper_->parameters())
@@ -70,6 +82,7 @@ class BoxsimEngine : public PeerEngine {
 
  private:
   std::string method_;
+  std::string gathering_;  ///< empty: the method's default
   std::unique_ptr<Stepper> stepper_;
   World world_;
 };

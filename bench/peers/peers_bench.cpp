@@ -222,7 +222,8 @@ int main(int argc, char** argv) {
   double durationScale = 1.0;
   app.add_option("--scene", sceneNames, "Scene to run (repeatable; default: all)");
   app.add_option("--engine", engineNames,
-                 "Engine (repeatable): a boxsim method (damped, impulse, ...), bullet, ode "
+                 "Engine (repeatable): a boxsim method (damped, impulse, ...), optionally with "
+                 "a contact gathering after a slash (damped/every_pass), bullet, ode "
                  "(default: damped, impulse and every peer found)");
   app.add_option("--table", tablePath, "Write the table here as Markdown");
   app.add_option("--scaling", scalingPath,
