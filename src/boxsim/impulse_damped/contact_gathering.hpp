@@ -321,6 +321,7 @@ class ContactGathering {
   /// the order it added them.
   std::vector<Candidate> candidates_;
   std::size_t sweptCandidates_ = 0;    ///< how many of candidates_ the sweep found
+  std::vector<std::pair<int, int>> sweptKeys_;  ///< the sweep's pairs, sorted
   std::vector<std::pair<int, int>> grownKeys_;  ///< the pairs added since, sorted
   std::vector<double> halfDiagonal_;   ///< m, per body: |h|, the ρ of reach()
   std::vector<double> slowReach_;      ///< m, per body: exactReach ℓ, the slow bodies' bar
