@@ -141,6 +141,7 @@ struct Grid {
   Eigen::Vector3i dims = Eigen::Vector3i::Ones();  ///< cells along x, y, z
   std::vector<int> start;  ///< bodies of cell c are order[start[c], start[c + 1])
   std::vector<int> order;  ///< gridded bodies by cell, by body index within a cell
+  std::vector<int> cell;   ///< the cell of each body of `order`
 };
 
 /// Builds the grid over `swept`, or returns false when a grid would not pay (the cells would
@@ -198,8 +199,13 @@ bool buildGrid(const std::vector<Vec3>& lo, const std::vector<Vec3>& hi,
   }
   for (std::size_t c = 1; c < grid.start.size(); ++c) grid.start[c] += grid.start[c - 1];
   grid.order.resize(gridded.size());
+  grid.cell.resize(gridded.size());
   std::vector<int> next(grid.start.begin(), grid.start.end() - 1);
-  for (std::size_t g = 0; g < gridded.size(); ++g) grid.order[next[cellOf[g]]++] = gridded[g];
+  for (std::size_t g = 0; g < gridded.size(); ++g) {
+    const int at = next[cellOf[g]]++;
+    grid.order[at] = gridded[g];
+    grid.cell[at] = cellOf[g];
+  }
   return true;
 }
 
@@ -226,10 +232,10 @@ void gridPairs(const World& world, const std::vector<Vec3>& lo, const std::vecto
     }
   };
   const Eigen::Vector3i& d = grid.dims;
-  int c = 0;  // the cell of the run below; cells come in increasing order
   for (int begin = 0; begin < static_cast<int>(m);) {
-    // The run of bodies in one cell: order[begin, end).
-    while (grid.start[c + 1] <= begin) ++c;
+    // The run of bodies in one cell: order[begin, end). Read from the body, not found by
+    // walking the cells: a scattered scene has up to kGridCellsPerBody empty cells a body.
+    const int c = grid.cell[begin];
     const int end = grid.start[c + 1];
     const int x = c % d.x(), y = (c / d.x()) % d.y(), z = c / (d.x() * d.y());
     for (int p = begin; p < end; ++p)
