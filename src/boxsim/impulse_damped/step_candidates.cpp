@@ -37,7 +37,7 @@ constexpr double kGuardRoundingSlack = 1e-9;
 /// every body's stretch (kGuardFactor) doubled for the rest of the step: a step whose impulses
 /// turned that many bodies will turn them again in its later passes. On the 10 000-cube clump
 /// 128, 1024 and no limit ran within 6 % of each other.
-constexpr std::size_t kMaxDirectlyGrown = 1000000;
+constexpr std::size_t kMaxDirectlyGrown = 128;
 /// With no index sorted yet in the step, fewer outgrown bodies than this in a pass are each
 /// tested against every body instead of sorting the bounds: sorting n bounds costs about what
 /// a dozen scans over them do. On the 1000-cube clump's spray, where a body or two outgrows
