@@ -416,7 +416,7 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
       if (contactOf(world, a, b, std::move(m), c)) fastContacts_.push_back(c);
     }
   // The pairs growCandidates added come after the sweep's: into the (a, b) order.
-  if (candidates_.size() > sweptCandidates_)
+  if (!grownKeys_.empty())
     std::sort(fastContacts_.begin(), fastContacts_.end(),
               [](const ImpulseContact& x, const ImpulseContact& y) {
                 return std::pair<int, int>(x.a, x.b) < std::pair<int, int>(y.a, y.b);

@@ -320,9 +320,8 @@ class ContactGathering {
   /// The sweep's pairs in increasing (a, b) order, then those growCandidates added since, in
   /// the order it added them.
   std::vector<Candidate> candidates_;
-  std::size_t sweptCandidates_ = 0;    ///< how many of candidates_ the sweep found
-  std::vector<std::pair<int, int>> sweptKeys_;  ///< the sweep's pairs, sorted
-  std::vector<std::pair<int, int>> grownKeys_;  ///< the pairs added since, sorted
+  std::vector<std::pair<int, int>> sweptKeys_;  ///< the sweep's pairs: candidates_ up to its size
+  std::vector<std::pair<int, int>> grownKeys_;  ///< the pairs added since, sorted (empty: none)
   std::vector<double> halfDiagonal_;   ///< m, per body: |h|, the ρ of reach()
   std::vector<double> slowReach_;      ///< m, per body: exactReach ℓ, the slow bodies' bar
   std::vector<Vec3> lo_, hi_;          ///< bounds at the current poses (obbBounds, margin 0)

@@ -101,7 +101,6 @@ void ContactGathering::sweepCandidates(const World& world, const Vec3& gravitySt
     candidates_.push_back(Candidate{i, j, SeparatingAxisResult{}, false});
     hasCandidate_[i] = hasCandidate_[j] = 1;
   }
-  sweptCandidates_ = candidates_.size();
 }
 
 void ContactGathering::indexGuards(const World& world) {
@@ -205,18 +204,16 @@ void ContactGathering::growCandidates(const World& world, const Vec3& gravitySte
   // axis: merging into the (a, b) order copied every candidate, in every pass something grew.
   // Looked up among the keys alone: a search through the candidates themselves, 96 bytes
   // apiece, missed the cache at every probe.
-  std::vector<std::pair<int, int>> added;
+  // The keys added now follow the sorted ones and are merged into them at the end (`found`
+  // holds each pair once, so none of them needs looking up among the others).
+  const auto grown = static_cast<std::ptrdiff_t>(grownKeys_.size());
   for (const std::pair<int, int>& key : found) {
     if (std::binary_search(sweptKeys_.begin(), sweptKeys_.end(), key)) continue;
-    if (std::binary_search(grownKeys_.begin(), grownKeys_.end(), key)) continue;
-    added.push_back(key);
-  }
-  for (const std::pair<int, int>& key : added)
+    if (std::binary_search(grownKeys_.begin(), grownKeys_.begin() + grown, key)) continue;
     candidates_.push_back(Candidate{key.first, key.second, SeparatingAxisResult{}, false});
-  const std::size_t old = grownKeys_.size();
-  grownKeys_.insert(grownKeys_.end(), added.begin(), added.end());
-  std::inplace_merge(grownKeys_.begin(), grownKeys_.begin() + static_cast<std::ptrdiff_t>(old),
-                     grownKeys_.end());
+    grownKeys_.push_back(key);
+  }
+  std::inplace_merge(grownKeys_.begin(), grownKeys_.begin() + grown, grownKeys_.end());
 }
 
 bool ContactGathering::stepPairs(const World& world, double margin,
@@ -254,7 +251,7 @@ bool ContactGathering::stepPairs(const World& world, double margin,
       if (boundsWithin(lo[i], hi[i], lo[jj], hi[jj], margin))
         found.emplace_back(std::min(i, j), std::max(i, j));
     }
-  if (!outsiders.empty() || candidates_.size() > sweptCandidates_)
+  if (!outsiders.empty() || !grownKeys_.empty())
     std::sort(found.begin(), found.end());
   pairs.swap(found);
   return true;
