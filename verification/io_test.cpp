@@ -1,6 +1,8 @@
 // Verification of scene loading (every kind of bad input gets an error that names the file,
 // the place and the fix), the named builders, trajectory files and atomic output.
 #include <catch2/catch.hpp>
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -144,6 +146,34 @@ TEST_CASE("The builders make the thesis' scenes", "[io][scene]") {
   }
   CHECK((centroid - Vec3(0, 20, 0)).norm() < 1e-12);
   CHECK(momentum.norm() < 1e-12);  // everything moves towards the centre
+}
+
+TEST_CASE("A spinning clump draws every spin component from [-spin, spin], the same for the same "
+          "seed", "[io][scene]") {
+  ClumpSpec spec;
+  spec.count = 343;
+  spec.spin = 6.0;
+  World a, b, other, still;
+  addClump(a, spec);
+  addClump(b, spec);
+  addClump(still, ClumpSpec{});
+  spec.seed = 2;
+  addClump(other, spec);
+  double largest = 0.0, mean = 0.0;
+  bool differs = false;
+  for (std::size_t i = 0; i < a.bodies.size(); ++i) {
+    CHECK(a.bodies[i].omega == b.bodies[i].omega);  // determinism: the same bits
+    differs = differs || a.bodies[i].omega != other.bodies[i].omega;
+    largest = std::max(largest, a.bodies[i].omega.cwiseAbs().maxCoeff());
+    mean += a.bodies[i].omega.sum() / (3.0 * 343.0);
+  }
+  CHECK(differs);
+  CHECK(largest <= 6.0);
+  CHECK(largest > 5.9);  // all 1029 draws short of 5.9: probability (5.9 / 6)^1029 < 1e-7
+  // The mean of 1029 uniform draws on [-6, 6] has a standard deviation of 6/sqrt(3 * 1029).
+  CHECK(std::abs(mean) < 4.0 * 6.0 / std::sqrt(3.0 * 1029.0));
+  for (const RigidBody& body : still.bodies) CHECK(body.omega == Vec3::Zero());
+  CHECK_THAT(errorOf(R"({"builders": [{"type": "clump", "spin": -1}]})"), Contains("spin"));
 }
 
 TEST_CASE("Trajectory files round-trip bit for bit", "[io][trajectory]") {

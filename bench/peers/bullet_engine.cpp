@@ -1,9 +1,12 @@
 // Bullet Physics as a peer: btDiscreteDynamicsWorld with the dynamic AABB tree broad phase and
-// the sequential impulse solver, all at their defaults (10 solver iterations, split impulse
-// off, deactivation after 2 s at rest on). Debian's Bullet is built in single precision.
+// the sequential impulse solver, all at Bullet 3.24's defaults: 10 solver iterations, split
+// impulse on, no restitution below 0.2 m/s of approach (m_restitutionVelocityThreshold),
+// deactivation of bodies resting for 2 s. Debian's Bullet is built in single precision.
 #include <btBulletDynamicsCommon.h>
 
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <memory>
 #include <vector>
 
@@ -18,11 +21,17 @@ btVector3 toBt(const Vec3& v) {
                    static_cast<btScalar>(v.z()));
 }
 Vec3 fromBt(const btVector3& v) { return Vec3(v.x(), v.y(), v.z()); }
+std::string fixed2(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f", value);
+  return text;
+}
 
 class BulletEngine : public PeerEngine {
  public:
-  BulletEngine()
-      : dispatcher_(&configuration_),
+  explicit BulletEngine(bool ccd)
+      : ccd_(ccd),
+        dispatcher_(&configuration_),
         world_(&dispatcher_, &broadphase_, &solver_, &configuration_) {}
   ~BulletEngine() override {
     for (std::unique_ptr<btRigidBody>& body : bodies_)
@@ -30,12 +39,17 @@ class BulletEngine : public PeerEngine {
   }
   std::string name() const override {
     return "Bullet " + std::to_string(BT_BULLET_VERSION / 100) + "." +
-           std::to_string(BT_BULLET_VERSION % 100);
+           std::to_string(BT_BULLET_VERSION % 100) + (ccd_ ? " CCD" : "");
   }
   std::string settings() const override {
-    return "btDiscreteDynamicsWorld, btDbvtBroadphase, btSequentialImpulseConstraintSolver, "
-           "defaults (" + std::to_string(world_.getSolverInfo().m_numIterations) +
-           " iterations, deactivation on), single precision, one substep of dt";
+    const btContactSolverInfo& info = world_.getSolverInfo();
+    return "btDiscreteDynamicsWorld, btDbvtBroadphase, btSequentialImpulseConstraintSolver at "
+           "its defaults (" + std::to_string(info.m_numIterations) + " iterations, split impulse " +
+           (info.m_splitImpulse ? "on" : "off") + ", restitution above " +
+           fixed2(info.m_restitutionVelocityThreshold) + " m/s of approach), deactivation after 2 s "
+           "at rest (off in the scenes marked sleep off), single precision, stepSimulation(dt, 0): one step of dt" +
+           (ccd_ ? "; CCD on launched boxes (motion threshold and swept sphere radius as "
+                   "Bullet's CcdPhysicsDemo: half extent, 0.9 half extent)" : "");
   }
   void load(const PeerScene& scene) override {
     world_.setGravity(toBt(scene.gravity));
@@ -56,9 +70,16 @@ class BulletEngine : public PeerEngine {
       info.m_restitution = restitution;
       info.m_friction = friction;
       bodies_.push_back(std::make_unique<btRigidBody>(info));
+      btRigidBody& body = *bodies_.back();
       if (mass > 0) {
-        bodies_.back()->setLinearVelocity(toBt(box.v));
-        bodies_.back()->setAngularVelocity(toBt(box.omega));
+        body.setLinearVelocity(toBt(box.v));
+        body.setAngularVelocity(toBt(box.omega));
+        if (!scene.sleep) body.setActivationState(DISABLE_DEACTIVATION);
+      }
+      if (ccd_ && box.launchTime >= 0) {
+        const btScalar half = static_cast<btScalar>(box.halfExtents.minCoeff());
+        body.setCcdMotionThreshold(half);
+        body.setCcdSweptSphereRadius(0.9f * half);
       }
       // A box waiting for its launch enters the world at its launch time.
       if (box.launchTime < 0) world_.addRigidBody(bodies_.back().get());
@@ -84,8 +105,15 @@ class BulletEngine : public PeerEngine {
       poses[i].omega = fromBt(b.getAngularVelocity());
     }
   }
+  int asleep() const override {
+    int count = 0;
+    for (const std::unique_ptr<btRigidBody>& body : bodies_)
+      if (body->getInvMass() > 0 && body->isInWorld() && !body->isActive()) ++count;
+    return count;
+  }
 
  private:
+  bool ccd_ = false;
   btDefaultCollisionConfiguration configuration_;
   btCollisionDispatcher dispatcher_;
   btDbvtBroadphase broadphase_;
@@ -98,6 +126,6 @@ class BulletEngine : public PeerEngine {
 
 }  // namespace
 
-std::unique_ptr<PeerEngine> makeBulletEngine() { return std::make_unique<BulletEngine>(); }
+std::unique_ptr<PeerEngine> makeBulletEngine(bool ccd) { return std::make_unique<BulletEngine>(ccd); }
 
 }  // namespace boxsim::peers

@@ -37,6 +37,9 @@ struct PeerScene {
   /// Coulomb friction coefficient of every contact, for the engines that model friction.
   /// boxsim's impulse methods are frictionless and damp sliding instead (\thesis{§5.2}).
   double friction = 0.5;
+  /// Each engine's own sleeping of bodies at rest: boxsim's computational stability
+  /// (\thesis{§4.5}, damped integration only), Bullet's deactivation, ODE's auto-disable.
+  bool sleep = true;
   double duration = 5.0;         ///< simulated time, s
   /// The body whose drift the table reports (the tower's top box), or -1.
   int trackedBody = -1;
@@ -71,6 +74,8 @@ class PeerEngine {
   virtual void step(double dt, double t) = 0;
   /// The state of every box, in scene order (immovable ones included).
   virtual void read(std::vector<PeerPose>& poses) const = 0;
+  /// Movable boxes the engine itself holds asleep (not stepped) after the last step.
+  virtual int asleep() const = 0;
 };
 
 /// boxsim under one of its methods (techniques.hpp), e.g. "damped", or a method with a contact
@@ -78,11 +83,12 @@ class PeerEngine {
 /// std::invalid_argument naming an unknown method or gathering.
 std::unique_ptr<PeerEngine> makeBoxsimEngine(const std::string& method);
 #ifdef BOXSIM_HAVE_BULLET
-/// Bullet's btDiscreteDynamicsWorld with its default solver (sequential impulse).
-std::unique_ptr<PeerEngine> makeBulletEngine();
+/// Bullet's btDiscreteDynamicsWorld with its default solver (sequential impulse). With `ccd`,
+/// launched boxes (the pyramids' projectile) get Bullet's continuous collision detection.
+std::unique_ptr<PeerEngine> makeBulletEngine(bool ccd);
 #endif
 #ifdef BOXSIM_HAVE_ODE
-/// ODE with dWorldQuickStep and its default iterations.
+/// ODE with dWorldQuickStep and its default iterations (ode_engine.cpp states every setting).
 std::unique_ptr<PeerEngine> makeOdeEngine();
 #endif
 

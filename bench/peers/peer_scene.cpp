@@ -49,12 +49,11 @@ class BoxsimEngine : public PeerEngine {
   explicit BoxsimEngine(const std::string& engine) {
     const std::size_t slash = engine.find('/');
     method_ = engine.substr(0, slash);
-    TechniqueOptions options;
     if (slash != std::string::npos) {
       gathering_ = engine.substr(slash + 1);
-      options.contactGathering = parseContactGathering(gathering_);
+      options_.contactGathering = parseContactGathering(gathering_);
     }
-    stepper_ = makeStepper(method_, options);
+    stepper_ = makeStepper(method_, options_);  // refuses an unknown method now, not at load
   }
   std::string name() const override {
     return "boxsim " + method_ + (gathering_.empty() ? "" : " " + gathering_);
@@ -64,13 +63,20 @@ class BoxsimEngine : public PeerEngine {
     for (const auto& [key, value] : stepper_->parameters())
       if (key == "integrator" || key == "sleep" || key == "contact_gathering")
         text += (text.empty() ? "" : ", ") + key + " " + value;
-    return text.empty() ? "defaults" : text;
+    return (text.empty() ? "defaults" : text) + ", frictionless (damping stands in, §5.2)";
   }
-  void load(const PeerScene& scene) override { world_ = scene.world; }
+  void load(const PeerScene& scene) override {
+    world_ = scene.world;
+    // Sleeping (§4.5) belongs to damped integration alone; the other methods never sleep.
+    if (method_ == "damped") {
+      options_.sleep = scene.sleep;
+      stepper_ = makeStepper(method_, options_);
+    }
+  }
   void step(double dt, double t) override {
     // As simulate(): a body launched at T starts moving with the step that begins at T.
     world_.applyLaunches(t + 1e-9 * dt);
-    stepper_->step(world_, dt);
+    asleep_ = stepper_->step(world_, dt).sleeping;
   }
   void read(std::vector<PeerPose>& poses) const override {
     poses.resize(world_.bodies.size());
@@ -79,12 +85,15 @@ class BoxsimEngine : public PeerEngine {
       poses[i] = PeerPose{b.s.x, b.s.q, b.v, b.omega};
     }
   }
+  int asleep() const override { return asleep_; }
 
  private:
   std::string method_;
   std::string gathering_;  ///< empty: the method's default
+  TechniqueOptions options_;
   std::unique_ptr<Stepper> stepper_;
   World world_;
+  int asleep_ = 0;
 };
 
 }  // namespace

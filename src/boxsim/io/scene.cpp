@@ -289,7 +289,7 @@ void readBuilder(const Node& node, Scene& scene, std::set<std::string>& names) {
     if (node.has("gap")) spec.gap = node.at("gap").nonNegative("m", &kCoordinateRange);
     addPyramid(scene.world, spec);
   } else if (type == "clump") {
-    node.allowKeys({"type", "count", "size", "mass", "spacing", "center", "speed"});
+    node.allowKeys({"type", "count", "size", "mass", "spacing", "center", "speed", "spin", "seed"});
     ClumpSpec spec;
     if (node.has("count")) spec.count = node.at("count").count();
     if (node.has("count")) requireRoom("count", spec.count);
@@ -298,6 +298,8 @@ void readBuilder(const Node& node, Scene& scene, std::set<std::string>& names) {
     if (node.has("spacing")) spec.spacing = node.at("spacing").positive(kSizeRange);
     if (node.has("center")) spec.center = node.at("center").vec3(kCoordinateRange);
     if (node.has("speed")) spec.speed = node.at("speed").bounded(kSpeedRange);
+    if (node.has("spin")) spec.spin = node.at("spin").nonNegative("rad/s", &kAngularSpeedRange);
+    if (node.has("seed")) spec.seed = static_cast<unsigned long>(node.at("seed").count());
     // Without a "spacing" key the default spacing can still be too small for a large "size";
     // the error then names "size", the key that is there.
     if (!(spec.spacing > spec.size))

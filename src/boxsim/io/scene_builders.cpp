@@ -1,7 +1,10 @@
 #include "boxsim/io/scene_builders.hpp"
 
+#include <gsl/gsl_rng.h>
+
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -139,6 +142,10 @@ Eigen::Vector3i clumpGrid(int count) {
 int addClump(World& world, const ClumpSpec& spec) {
   if (!(spec.spacing > spec.size))
     throw std::invalid_argument("clump spacing must exceed the cube size so cubes start apart");
+  if (!(spec.spin >= 0.0)) throw std::invalid_argument("clump spin must be >= 0 rad/s");
+  const std::unique_ptr<gsl_rng, void (*)(gsl_rng*)> rng(gsl_rng_alloc(gsl_rng_mt19937), gsl_rng_free);
+  gsl_rng_set(rng.get(), spec.seed);
+  const auto uniformSpin = [&] { return spec.spin * (2.0 * gsl_rng_uniform(rng.get()) - 1.0); };
   const Eigen::Vector3i n = clumpGrid(spec.count);
   int index = 0;
   for (int i = 0; i < n.x(); ++i)
@@ -151,6 +158,10 @@ int addClump(World& world, const ClumpSpec& spec) {
         b.updateDerived();
         const double distance = offset.norm();
         if (distance > 0.0) b.setVelocity(-spec.speed / distance * offset);
+        if (spec.spin > 0.0) {
+          const double wx = uniformSpin(), wy = uniformSpin(), wz = uniformSpin();
+          b.setAngularVelocity(Vec3(wx, wy, wz));
+        }
         world.add(b, "clump_" + std::to_string(index++));
       }
   return spec.count;

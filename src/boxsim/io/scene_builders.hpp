@@ -46,7 +46,10 @@ struct PyramidSpec {
 
 /// `count` cubes on a regular grid of the given spacing centred on `center`, each moving at
 /// `speed` towards the centre (\thesis{Fig. 6.7}). The grid is nx × ny × nz = count with the
-/// three as close to equal as count allows (100 = 5 × 5 × 4, 1000 = 10³).
+/// three as close to equal as count allows (100 = 5 × 5 × 4, 1000 = 10³). With `spin` > 0 each
+/// cube also spins, every component of its angular velocity drawn uniformly from [−spin, spin]
+/// by GSL's mt19937 seeded with `seed` (the same scene for the same seed), so that a clump
+/// dropped close to the ground tumbles into a heap instead of landing as one block.
 struct ClumpSpec {
   int count = 100;  ///< number of cubes, >= 1
   double size = 1.0;     ///< m
@@ -54,6 +57,8 @@ struct ClumpSpec {
   double spacing = 2.0;  ///< centre-to-centre distance, m, > size
   Vec3 center = Vec3(0.0, 20.0, 0.0);  ///< m
   double speed = 5.0;    ///< m/s towards the centre
+  double spin = 0.0;     ///< rad/s, largest component of a cube's random angular velocity, >= 0
+  unsigned long seed = 1;  ///< seed of the spins' random generator
 };
 
 /// Adds the die; returns 1. Throws std::invalid_argument on non-positive size or mass.

@@ -1,0 +1,206 @@
+#include "peer_report.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <thread>
+
+namespace boxsim::peers {
+
+namespace {
+
+constexpr const char* kBoxsim = "boxsim damped";
+
+std::string fixed(double value, int digits) {
+  if (std::isnan(value)) return "–";
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", digits, value);
+  return text;
+}
+
+/// Milliseconds with three significant digits at least, so 0.0012 and 140 both read well.
+std::string ms(double value) {
+  const int digits = value >= 100 ? 0 : value >= 10 ? 1 : value >= 1 ? 2 : value >= 0.01 ? 3 : 4;
+  return fixed(value, digits);
+}
+
+std::string seconds(double value) { return value < 0 ? "never" : fixed(value, 2); }
+
+/// The first line a shell command prints, without its newline; empty when it fails.
+std::string firstLineOf(const std::string& command) {
+  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
+  if (!pipe) return "";
+  std::array<char, 256> line{};
+  if (!std::fgets(line.data(), static_cast<int>(line.size()), pipe.get())) return "";
+  std::string text = line.data();
+  while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
+  return text;
+}
+
+/// The value of the first line of a /proc file that starts with `key`, e.g. "model name".
+std::string procField(const std::string& path, const std::string& key) {
+  std::ifstream in(path);
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind(key, 0) == 0) {
+      const std::size_t colon = line.find(':');
+      std::string value = colon == std::string::npos ? line : line.substr(colon + 1);
+      value.erase(0, value.find_first_not_of(" \t"));
+      return value;
+    }
+  return "unknown";
+}
+
+const RunResult* find(const SceneResults& scene, const std::string& engine) {
+  for (const RunResult& r : scene.runs)
+    if (r.engine == engine) return &r;
+  return nullptr;
+}
+
+/// The peer (not boxsim) with the lowest mean ms per step, or nullptr.
+const RunResult* fasterPeer(const SceneResults& scene) {
+  const RunResult* best = nullptr;
+  for (const RunResult& r : scene.runs)
+    if (r.engine.rfind("boxsim", 0) != 0 && (!best || r.meanMs() < best->meanMs())) best = &r;
+  return best;
+}
+
+std::string tableRow(const SceneResults& scene, const RunResult& r) {
+  const RunMeasures& m = r.measures;
+  const RunResult* boxsim = find(scene, kBoxsim);
+  const auto [lo, hi] = std::minmax_element(r.repMeanMs.begin(), r.repMeanMs.end());
+  std::ostringstream out;
+  out << "| " << scene.spec.label() << " | " << m.bodies << " | " << r.engine << " | **"
+      << ms(r.meanMs()) << "** | " << ms(r.medianMs()) << " | " << ms(r.p95Ms()) << " | "
+      << ms(*lo) << "–" << ms(*hi) << " | "
+      << (boxsim && boxsim != &r ? fixed(r.meanMs() / boxsim->meanMs(), 2) : "") << " | "
+      << fixed(1000 * m.meanPenetration, 1) << " / " << fixed(1000 * m.finalPenetration, 1) << " / "
+      << fixed(1000 * m.maxPenetration, 1) << " | " << fixed(m.finalKinetic, 3) << " | "
+      << m.asleepAtEnd << " | " << seconds(m.allAsleepFrom) << " | " << seconds(m.allAtRestFrom)
+      << " | " << (m.drift < 0 ? "–" : fixed(1000 * m.drift, 1)) << " |\n";
+  return out.str();
+}
+
+/// Where boxsim damped integration is ahead of and behind the faster peer, in plain lists.
+std::string summary(const std::vector<SceneResults>& scenes) {
+  std::ostringstream ahead, behind, deeper, later;
+  for (const SceneResults& s : scenes) {
+    const RunResult* boxsim = find(s, kBoxsim);
+    const RunResult* peer = fasterPeer(s);
+    if (!boxsim || !peer) continue;
+    const double ratio = boxsim->meanMs() / peer->meanMs();
+    (ratio < 1 ? ahead : behind) << "- " << s.spec.label() << ": " << fixed(ratio, 2) << "× "
+                                 << peer->engine << "'s mean\n";
+    double bestFinal = INFINITY;
+    for (const RunResult& r : s.runs)
+      if (r.engine.rfind("boxsim", 0) != 0) bestFinal = std::min(bestFinal, r.measures.finalPenetration);
+    if (boxsim->measures.finalPenetration > bestFinal + 1e-4)
+      deeper << "- " << s.spec.label() << ": " << fixed(1000 * boxsim->measures.finalPenetration, 1)
+             << " mm against " << fixed(1000 * bestFinal, 1) << " mm\n";
+    const RunResult* bullet = nullptr;
+    for (const RunResult& r : s.runs)
+      if (r.engine.rfind("Bullet", 0) == 0 && r.engine.find("CCD") == std::string::npos) bullet = &r;
+    if (bullet && s.spec.sleep && bullet->measures.allAsleepFrom >= 0 &&
+        (boxsim->measures.allAsleepFrom < 0 ||
+         boxsim->measures.allAsleepFrom > bullet->measures.allAsleepFrom))
+      later << "- " << s.spec.label() << ": " << seconds(boxsim->measures.allAsleepFrom)
+            << " against Bullet's " << seconds(bullet->measures.allAsleepFrom) << " s\n";
+  }
+  auto section = [](const std::string& title, const std::string& body) {
+    return "**" + title + "**\n\n" + (body.empty() ? "- none\n" : body) + "\n";
+  };
+  return section("boxsim damped is faster than the faster peer (its mean ms/step as a multiple of that peer's):", ahead.str()) +
+         section("boxsim damped is slower than the faster peer:", behind.str()) +
+         section("boxsim damped ends deeper in penetration than the best peer:", deeper.str()) +
+         section("boxsim damped has every box asleep later than Bullet, or never:", later.str());
+}
+
+}  // namespace
+
+std::string stamp(const std::string& sourceDir) {
+  const std::time_t now = std::time(nullptr);
+  char date[64];
+  std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
+  std::string commit = firstLineOf("git -C '" + sourceDir + "' rev-parse --short HEAD 2>/dev/null");
+  if (commit.empty()) commit = "unknown";
+  else if (!firstLineOf("git -C '" + sourceDir + "' status --porcelain --untracked-files=no 2>/dev/null").empty())
+    commit += " with uncommitted changes";
+  std::ostringstream out;
+  out << "- date: " << date << "\n- commit: " << commit << "\n- machine: "
+      << procField("/proc/cpuinfo", "model name") << ", " << std::thread::hardware_concurrency()
+      << " logical cores, " << procField("/proc/meminfo", "MemTotal") << "\n- compiler: "
+#ifdef __VERSION__
+      << "g++ " << __VERSION__
+#endif
+      << ", " << BOXSIM_BUILD_TYPE << " build\n";
+  return out.str();
+}
+
+std::string markdownPage(const std::vector<SceneResults>& scenes, const RunSetup& setup,
+                         const std::string& stampText) {
+  std::ostringstream out;
+  out << "# boxsim side by side with Bullet and ODE\n\n"
+      << "Written by `boxsim_peers` (bench/peers); do not edit by hand. Regenerate with\n"
+      << "`cmake --build build --target bench_peers`.\n\n" << stampText << "- command: `"
+      << setup.command << "`\n\n"
+      << "## How it is measured\n\n"
+      << "One process, one thread, Δt = " << fixed(setup.dt, 6) << " s, 1 kg unit cubes. Each scene runs "
+      << setup.reps << " times under every engine, interleaved (engine A repetition 1, engine B "
+      << "repetition 1, …). A step's time is the wall-clock time of the engine's step alone. "
+      << "**Mean** ms/step is over every step of every repetition; median and 95th percentile "
+      << "beside it; *rep means* is the range of the repetitions' means (the machine's noise). "
+      << "The ratio column is the row's mean divided by boxsim damped integration's mean in the "
+      << "same scene: above 1, boxsim is faster. Sleeping (each engine's own: boxsim's §4.5, "
+      << "Bullet's deactivation, ODE's auto-disable) is on unless the scene says `sleep off`.\n\n"
+      << "The physics is measured on the first repetition with one yardstick for every engine, "
+      << "boxsim's separating-axis test on the engine's poses: penetration is the deepest overlap "
+      << "of any two boxes (ground included) in a frame, averaged over the frames (scenes of over "
+      << "2000 boxes: every 10th frame), after the last step, and the largest of any frame; the "
+      << "kinetic energy after the last step; the boxes the engine holds asleep at the end; from "
+      << "when every box stays asleep (engine's own sleeping) and from when every box stays at "
+      << "rest (below " << kRestSpeed << " m/s and " << kRestSpin << " rad/s, whatever the engine "
+      << "does); drift is the tower's top box's distance from its start, or the die's horizontal "
+      << "travel.\n\n"
+      << "## Summary\n\n" << summary(scenes)
+      << "## Table\n\n"
+      << "| scene | boxes | engine | mean ms/step | median | p95 | rep means | mean ÷ boxsim damped's "
+      << "| penetration mean / final / max (mm) | kinetic energy at end (J) | asleep at end "
+      << "| all asleep from (s) | all at rest from (s) | drift (mm) |\n"
+      << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const SceneResults& s : scenes)
+    for (const RunResult& r : s.runs) out << tableRow(s, r);
+  out << "\n## Engines\n\n";
+  for (const auto& [name, text] : setup.settings) out << "- **" << name << "**: " << text << "\n";
+  if (!setup.absent.empty()) out << "- not found at configure time: " << setup.absent << "\n";
+  out << "\nFriction: Bullet and ODE run with Coulomb friction μ = " << fixed(scenes.empty() ? 0.5 : scenes.front().spec.friction, 2)
+      << " on every contact (Bullet combines two bodies' coefficients by their product, so each "
+      << "body gets the square root); boxsim has no friction (its damping stands in for it, "
+      << "§5.2), so a sliding or tumbling box travels further under boxsim.\n";
+  return out.str();
+}
+
+std::string scalingData(const std::vector<SceneResults>& scenes, double restitution,
+                        const RunSetup& setup, const std::string& stampText) {
+  std::ostringstream out;
+  out << "# s7_peers_scaling: ms per step against cubes in the clump of Fig. 6.7, restitution "
+      << restitution << ", written by boxsim_peers\n";
+  std::istringstream lines(stampText);
+  for (std::string line; std::getline(lines, line);) out << "# " << line.substr(2) << "\n";
+  out << "# dt: " << setup.dt << " s, repetitions: " << setup.reps << "\n"
+      << "# columns: boxes engine mean_ms median_ms p95_ms rep_min_ms rep_max_ms seconds\n";
+  for (const SceneResults& s : scenes) {
+    if (s.spec.base.rfind("clump", 0) != 0 || s.spec.restitution != restitution || !s.spec.sleep) continue;
+    for (const RunResult& r : s.runs) {
+      const auto [lo, hi] = std::minmax_element(r.repMeanMs.begin(), r.repMeanMs.end());
+      out << r.measures.bodies << " \"" << r.engine << "\" " << r.meanMs() << " " << r.medianMs()
+          << " " << r.p95Ms() << " " << *lo << " " << *hi << " " << s.spec.duration << "\n";
+    }
+  }
+  return out.str();
+}
+
+}  // namespace boxsim::peers

@@ -1,0 +1,65 @@
+/// \file
+/// Running one scene under one engine, and what the comparison reports of it: the time of
+/// every step (over repetitions) and the physics, measured with one yardstick for every
+/// engine (boxsim's separating-axis test on the engine's poses).
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "boxsim/core/world.hpp"
+#include "peer_engine.hpp"
+
+namespace boxsim::peers {
+
+/// A scene of the comparison: a base scene under one restitution and one sleep setting.
+struct SceneSpec {
+  std::string base;       ///< the scene's name without its settings, e.g. "clump1000"
+  double duration = 5.0;  ///< simulated time, s
+  std::function<World()> build;
+  double restitution = 0.9;  ///< Newtonian coefficient for every engine
+  bool sleep = true;         ///< every engine's sleeping of bodies at rest
+  double friction = 0.5;     ///< Coulomb coefficient for the engines that have friction
+  bool tower = false;        ///< report the top box's drift
+  bool die = false;          ///< report the die's horizontal travel
+  bool launches = false;     ///< a box is launched (the shot pyramids): Bullet's CCD row too
+
+  /// "clump1000 e=0", with ", sleep off" when the engines do not sleep.
+  std::string label() const;
+};
+
+/// The physics of one run, the same for every repetition of a deterministic engine.
+struct RunMeasures {
+  int bodies = 0;                 ///< movable boxes
+  double meanPenetration = 0;     ///< m, the deepest penetration of a measured frame, averaged
+  double finalPenetration = 0;    ///< m, the deepest penetration after the last step
+  double maxPenetration = 0;      ///< m, the deepest penetration of any measured frame
+  double finalKinetic = 0;        ///< J, translational and rotational, after the last step
+  int asleepAtEnd = 0;            ///< movable boxes the engine holds asleep after the last step
+  double allAsleepFrom = -1;      ///< s, from when every movable box stays asleep; -1: never
+  double allAtRestFrom = -1;      ///< s, from when every box stays below kRestSpeed/kRestSpin
+  double drift = -1;              ///< m: tower top drift, die horizontal travel; -1: none
+};
+
+/// One engine on one scene: step times over every repetition and the first one's measures.
+struct RunResult {
+  std::string engine;
+  std::vector<double> stepMs;     ///< every step of every repetition, ms
+  std::vector<double> repMeanMs;  ///< the mean step of each repetition, ms
+  RunMeasures measures;
+
+  double meanMs() const;    ///< over every step of every repetition
+  double medianMs() const;  ///< over every step of every repetition
+  double p95Ms() const;     ///< 95th percentile over every step of every repetition
+};
+
+/// A box counts as at rest below these (a 1 kg unit cube: 5e-5 J of translation).
+constexpr double kRestSpeed = 0.01;  ///< m/s
+constexpr double kRestSpin = 0.02;   ///< rad/s
+
+/// Runs `spec` once under `engine` (a fresh engine per run) with steps of dt seconds; appends
+/// its step times to `result` and, on the first repetition, measures the physics.
+void runRepetition(const SceneSpec& spec, PeerEngine& engine, double dt, RunResult& result);
+
+}  // namespace boxsim::peers
