@@ -130,6 +130,7 @@ void ContactGathering::buildCache(const World& world, const Vec3& gravityStep, d
   // gives with margin and widening, picked from the candidates (whose growth is at least the
   // widening) by the sweep's own test.
   pairs_.clear();
+  exactManifolds_.clear();
   for (const Candidate& candidate : candidates_) {
     const int i = candidate.a, j = candidate.b;
     if (fast_[i] || fast_[j]) continue;  // gathered as written, pass by pass
@@ -244,13 +245,6 @@ Obb ContactGathering::passBox(const World& world, int i) const {
   const RigidBody& body = world.bodies[i];
   if (!(moved_[i] || partner_[i])) return Obb::of(body);
   return Obb{predicted_[i].x, predicted_[i].R, body.halfExtents};
-}
-
-bool ContactGathering::exactContact(const World& world, int i, int j, double margin,
-                                    ImpulseContact& contact) {
-  return contactOf(world, i, j,
-                   collideBoxes(Obb::of(world.bodies[i]), Obb::of(world.bodies[j]), margin),
-                   contact);
 }
 
 bool ContactGathering::contactOf(const World& world, int i, int j, ContactManifold m,
@@ -454,7 +448,20 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
       continue;
     }
     if (pair.count == 0) {
-      if (exactContact(world, key.first, key.second, margin, c)) contacts_.push_back(c);
+      // Neither body moved since the first pass that looked: the narrow phase answers as then.
+      if (pair.exact == kExactUnknown) {
+        pair.exact = static_cast<int>(exactManifolds_.size());
+        exactManifolds_.push_back(collideBoxes(Obb::of(world.bodies[key.first]),
+                                               Obb::of(world.bodies[key.second]), margin));
+        exactManifolds_.back().a = key.first;
+        exactManifolds_.back().b = key.second;
+      }
+      const ContactManifold& m = exactManifolds_[static_cast<std::size_t>(pair.exact)];
+      if (m.count > 0) {
+        // Its face is remembered once while it stays slow, as the predicted pairs' below.
+        contacts_.push_back(normals_.contactOf(world, m, !pair.remembered));
+        pair.remembered = true;
+      }
     } else if (predictedContact(world, pair, gravityStep, dt, margin, c)) {
       // The bodies have not moved since the cache was built: its manifold names the face, the
       // same in every pass, so remembering it once is remembering it every pass.

@@ -192,7 +192,12 @@ class ContactGathering {
     std::array<CachedPoint, 4> points;
     int count;
     bool remembered;  ///< its face was handed to the normal model since it last was fast
+    /// A pair with no point to predict from (count 0) gets the narrow phase where its slow
+    /// bodies stand, the same in every pass of the step: its manifold, found in the first pass
+    /// that needs it (index into exactManifolds_), or kExactUnknown.
+    int exact = kExactUnknown;
   };
+  static constexpr int kExactUnknown = -1;
 
   /// m: how far a body moves in a pass with its current velocities, Δt (|v'| + |ω| ρ).
   double reach(const RigidBody& body, const Vec3& gravityStep, double dt) const;
@@ -203,8 +208,6 @@ class ContactGathering {
   /// within the margin.
   bool predictedContact(const World& world, const CachedPair& pair, const Vec3& gravityStep,
                         double dt, double margin, ImpulseContact& contact) const;
-  /// The narrow phase of bodies i < j where they stand; false when they do not touch.
-  bool exactContact(const World& world, int i, int j, double margin, ImpulseContact& contact);
   /// The contact of bodies i < j from their manifold m (the normal model's choice); false
   /// when m has no point.
   bool contactOf(const World& world, int i, int j, ContactManifold m, ImpulseContact& contact);
@@ -349,6 +352,7 @@ class ContactGathering {
   Vec3 predictedGravity_ = Vec3::Zero();  ///< the g Δt and Δt the predicted poses are for
   double predictedDt_ = 0.0;
   std::vector<ContactManifold> manifolds_;  ///< the candidates' last manifolds (Candidate)
+  std::vector<ContactManifold> exactManifolds_;  ///< the cached pairs' narrow phases (CachedPair::exact)
 };
 
 }  // namespace boxsim
