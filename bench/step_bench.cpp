@@ -21,7 +21,9 @@
 /// pyramid20_hit times the half second in which the projectile strikes it. The clump's cost
 /// changes several-fold over its run: clump1000 times the second after 3 s, when the cubes have
 /// flown apart and are landing, clump1000_collide the half second after 1.5 s, when they meet in
-/// mid-air. Each figure is the mean over its window, not a median over steps.
+/// mid-air. The dense piles at restitution 0: pile343_settling times the second after 1 s of the
+/// settling heap, clump1000_e0_pile the second after 2 s of the 1000-cube clump at e = 0, when
+/// it piles up on the ground. Each figure is the mean over its window, not a median over steps.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -67,6 +69,8 @@ struct Case {
   /// so the case times the resting pyramid alone, whatever the window's length.
   bool launch = false;
   std::string aim;  ///< the project's target for this case, printed as the label
+  /// The world's restitution for the case, or NaN: the scene's own.
+  double restitution = std::nan("");
 };
 
 /// A world and a stepper advanced together to the start of the timed window. Copying both is
@@ -87,6 +91,7 @@ template <class StepperT>
 WarmState<StepperT> warmedUp(const Case& c, const StepperT& fresh) {
   WarmState<StepperT> warm{
       boxsim::loadScene(std::string(BOXSIM_SCENE_DIR) + "/" + c.scene + ".json").world, fresh};
+  if (!std::isnan(c.restitution)) warm.world.restitution = c.restitution;
   const long steps = std::lround(c.warmUp / kDt);
   for (; warm.step < steps; ++warm.step) {
     warm.world.applyLaunches(launchClock(warm.step));
@@ -187,6 +192,11 @@ void registerAll() {
       {"clump100", "clump100", 3.0, 60, 2, false, ""},
       {"clump1000", "clump1000", 3.0, 60, 1, false, clumpAim},
       {"clump1000_collide", "clump1000", 1.5, 30, 1, false, ""},
+      // Dense piles at restitution 0 (bench/peers compares them with Bullet and ODE): the
+      // settling heap of pile343.json a second after its drop, and the 1000-cube clump piling
+      // up on the ground after 2 s.
+      {"pile343_settling", "pile343", 1.0, 60, 1, false, ""},
+      {"clump1000_e0_pile", "clump1000", 2.0, 60, 1, false, "", 0.0},
   };
   for (const Case& c : damped) {
     Case awake = c;
