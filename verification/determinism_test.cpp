@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "boxsim/collision/broad_phase.hpp"
+#include "boxsim/impulse_damped/damped_integration.hpp"
 #include "boxsim/io/scene_builders.hpp"
 #include "boxsim/techniques.hpp"
 #include "boxsim/timewarp/timewarp.hpp"
@@ -66,6 +67,16 @@ std::unique_ptr<Stepper> stepperOf(const std::string& method) {
   return std::make_unique<TimewarpStepper>(params);
 }
 
+/// Appends every double of every body's state (x, q, P, L) to `out`.
+void appendStates(const World& world, std::vector<double>& out) {
+  for (const RigidBody& b : world.bodies) {
+    out.insert(out.end(), b.s.x.data(), b.s.x.data() + 3);
+    out.insert(out.end(), b.s.q.coeffs().data(), b.s.q.coeffs().data() + 4);
+    out.insert(out.end(), b.s.P.data(), b.s.P.data() + 3);
+    out.insert(out.end(), b.s.L.data(), b.s.L.data() + 3);
+  }
+}
+
 /// Every double of every body's state after each step of `method` on `start` run with the
 /// broad phase `kind`, in order.
 std::vector<double> trajectory(const std::string& method, int steps,
@@ -77,12 +88,7 @@ std::vector<double> trajectory(const std::string& method, int steps,
   std::vector<double> out;
   for (int k = 0; k < steps; ++k) {
     stepper->step(world, 1.0 / 60.0);
-    for (const RigidBody& b : world.bodies) {
-      out.insert(out.end(), b.s.x.data(), b.s.x.data() + 3);
-      out.insert(out.end(), b.s.q.coeffs().data(), b.s.q.coeffs().data() + 4);
-      out.insert(out.end(), b.s.P.data(), b.s.P.data() + 3);
-      out.insert(out.end(), b.s.L.data(), b.s.L.data() + 3);
-    }
+    appendStates(world, out);
   }
   return out;
 }
@@ -143,5 +149,27 @@ TEST_CASE("Impulse and damped give the same trajectory, bit for bit, with either
     const std::vector<double> off = trajectory(method, steps, BroadPhase::AllPairs, start);
     INFO(method);
     CHECK(sameBits(on, off));
+  }
+}
+
+TEST_CASE("Damped integration gives the same bits whether or not it stops the collision passes "
+          "after one that changed nothing, and does stop them",
+          "[impulse_damped][determinism]") {
+  for (const World& start : {manyContacts(), fastClump()}) {
+    std::vector<double> states[2];
+    int passes[2] = {0, 0};
+    for (int stop = 0; stop < 2; ++stop) {
+      DampedIntegrationParams params;
+      params.stopUnchangedCollisionPasses = stop == 1;
+      DampedIntegrationStepper stepper(params);
+      World world = start;
+      for (int k = 0; k < static_cast<int>(std::max(6L, testing::scaledCount(60))); ++k) {
+        passes[stop] += stepper.step(world, 1.0 / 60.0).passes;
+        appendStates(world, states[stop]);
+      }
+    }
+    CHECK(sameBits(states[0], states[1]));
+    // The resting pyramid and the clump once it rests leave collision passes with nothing to do.
+    CHECK(passes[1] < passes[0]);
   }
 }

@@ -148,7 +148,7 @@ TEST_CASE("The builders make the thesis' scenes", "[io][scene]") {
   CHECK(momentum.norm() < 1e-12);  // everything moves towards the centre
 }
 
-TEST_CASE("A spinning clump draws every spin component from [-spin, spin], the same for the same "
+TEST_CASE("A spinning clump draws every spin component uniformly between minus and plus its spin, the same for the same "
           "seed", "[io][scene]") {
   ClumpSpec spec;
   spec.count = 343;

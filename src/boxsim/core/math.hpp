@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cstring>
 #include <string>
 
 namespace boxsim {
@@ -27,5 +28,11 @@ inline Quat axisAngleDegrees(const Vec3& axis, double angleDeg) {
 /// The shortest decimal text that reads back to exactly `value` (round trip), for output
 /// headers and data files: 1e-05, 0.9, 0.016666666666666666.
 std::string shortestText(double value);
+
+/// Whether two vectors hold the same doubles bit for bit (so -0 differs from 0, and a NaN
+/// equals itself): the test for reusing a value computed from them.
+inline bool sameBits(const Vec3& a, const Vec3& b) {
+  return std::memcmp(a.data(), b.data(), 3 * sizeof(double)) == 0;
+}
 
 }  // namespace boxsim

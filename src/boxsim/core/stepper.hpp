@@ -28,6 +28,8 @@ struct StepStats {
   long bodyIntegrations = 0;
   /// Single-body roll-backs: a body's state reset to an earlier one to be integrated again.
   long bodyRollbacks = 0;
+  /// Collision and contact passes run (impulse-based techniques, \alg{A.2} L1-L2).
+  int passes = 0;
 
   /// Accumulates the counts of another step; `contacts` and `sleeping` take the later value.
   StepStats& operator+=(const StepStats& o) {
@@ -39,6 +41,7 @@ struct StepStats {
     limitReached = limitReached || o.limitReached;
     bodyIntegrations += o.bodyIntegrations;
     bodyRollbacks += o.bodyRollbacks;
+    passes += o.passes;
     return *this;
   }
 };

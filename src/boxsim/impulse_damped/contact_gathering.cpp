@@ -89,13 +89,6 @@ bool ContactGathering::cacheCovers(const World& world) const {
   return true;
 }
 
-namespace {
-/// Whether two vectors hold the same doubles bit for bit (so -0 differs from 0, and a NaN
-/// equals itself): the test for reusing a value computed from them.
-bool sameBits(const Vec3& a, const Vec3& b) {
-  return std::memcmp(a.data(), b.data(), 3 * sizeof(double)) == 0;
-}
-}  // namespace
 
 void ContactGathering::buildCache(const World& world, const Vec3& gravityStep, double dt,
                                   double margin) {

@@ -89,15 +89,21 @@ StepStats DampedIntegrationStepper::step(World& world, double dt) {
   std::vector<char> touched(world.bodies.size(), 0);
   // L1: RESOLVECOLLISIONS — positions predicted with gravity, impulses without; high-speed
   // collisions perturbed (§4.2).
-  for (int i = 0; i < params_.impulse.collisionIterations; ++i)
-    stats.events += impulsePass(world, dt, world.restitution, GravityMode::VelocityPlusGravity,
-                                GravityMode::VelocityNoGravity, margin, gathering_, stable_,
-                                params_.dampCollidingBodies ? &touched : nullptr,
-                                hooked ? collisionHook : BeforeCollide{})
-                        .impulses;
+  for (int i = 0; i < params_.impulse.collisionIterations; ++i) {
+    const PassResult pass =
+        impulsePass(world, dt, world.restitution, GravityMode::VelocityPlusGravity,
+                    GravityMode::VelocityNoGravity, margin, gathering_, stable_,
+                    params_.dampCollidingBodies ? &touched : nullptr,
+                    hooked ? collisionHook : BeforeCollide{});
+    stats.events += pass.impulses;
+    ++stats.passes;
+    // A pass that changed no body leaves the world as it found it: every later collision pass
+    // would repeat it, changing nothing. Stopping here gives the same bits, sooner.
+    if (!pass.changed && params_.stopUnchangedCollisionPasses) break;
+  }
   // L2: RESOLVECONTACTS — restitution from -1 towards 0 (RESOLVECONTACTS L5), gravity trick.
   const int iterations = params_.impulse.contactIterations;
-  for (int i = 1; i <= iterations; ++i)
+  for (int i = 1; i <= iterations; ++i, ++stats.passes)
     stats.events += impulsePass(world, dt, -1.0 + static_cast<double>(i) / iterations,
                                 GravityMode::VelocityPlusGravity, GravityMode::VelocityPlusGravity,
                                 margin, gathering_, stable_, &touched,

@@ -37,6 +37,10 @@ struct DampedIntegrationParams {
   bool dampCollidingBodies = false;
   bool fixContactConstraints = true;   ///< run FIXCONTACTCONSTRAINTS
   bool useGeometricStability = true;   ///< run SETGEOMETRICALLYSTABLE and COLLIDE L11-L14
+  /// Speed only, the same bits either way (tested): RESOLVECOLLISIONS (\alg{A.2} L1) stops
+  /// after a pass that changed no body's momenta or mobility, since every later pass would
+  /// repeat it. Not written into output headers, as it changes no result.
+  bool stopUnchangedCollisionPasses = true;
 };
 
 /// DAMPEDINTEGRATION(Δt) of \alg{A.2} as a Stepper ("damped"), with sleeping and visual

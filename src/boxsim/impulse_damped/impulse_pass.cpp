@@ -18,6 +18,16 @@ void addVelocity(RigidBody& body, const Vec3& deltaV) {
   body.v = body.invMass * body.s.P;  // L is unchanged, so ω = I⁻¹ L is too
 }
 
+/// What COLLIDE may change of a body, to tell whether it did, bit for bit.
+struct BodyMomenta {
+  Vec3 P, L;
+  bool immovable;
+  explicit BodyMomenta(const RigidBody& body) : P(body.s.P), L(body.s.L), immovable(body.immovable) {}
+  bool same(const RigidBody& body) const {
+    return sameBits(P, body.s.P) && sameBits(L, body.s.L) && immovable == body.immovable;
+  }
+};
+
 /// The velocity COLLIDE adds for the gravity trick (A.2 L1-L4): g Δt or zero.
 Vec3 gravityVelocity(const World& world, GravityMode gravity, double dt) {
   return gravity == GravityMode::VelocityPlusGravity ? Vec3(dt * world.gravity) : Vec3(Vec3::Zero());
@@ -86,9 +96,12 @@ PassResult impulsePass(World& world, double dt, double restitution, GravityMode 
   result.contacts = static_cast<int>(contacts.size());
   const CollideCall call{restitution, impulseGravity, dt};
   for (ImpulseContact& c : contacts) {
+    const BodyMomenta beforeA(world.bodies[c.a]), beforeB(world.bodies[c.b]);
     if (beforeCollide) beforeCollide(world, c, call);
     if (touched) (*touched)[c.a] = (*touched)[c.b] = 1;
     if (collide(world, c, restitution, impulseGravity, dt, stable) > 0.0) ++result.impulses;
+    result.changed = result.changed || !beforeA.same(world.bodies[c.a]) ||
+                     !beforeB.same(world.bodies[c.b]);
   }
   // The momenta the impulses changed stay.
   gathering.end(world);

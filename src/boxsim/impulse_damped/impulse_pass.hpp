@@ -54,6 +54,10 @@ using BeforeCollide = std::function<void(World&, ImpulseContact&, const CollideC
 struct PassResult {
   int contacts = 0;  ///< pairs touching at the predicted positions
   int impulses = 0;  ///< impulses applied
+  /// Whether COLLIDE (or the hook before it) changed any body's momenta or mobility, bit for
+  /// bit. When it did not, the world leaves the pass as it entered it, so another pass with
+  /// the same arguments would find the same contacts and change nothing either.
+  bool changed = false;
 };
 
 /// One pass of RESOLVECOLLISIONS / RESOLVECONTACTS (\alg{A.2} L2-L6 of either):
