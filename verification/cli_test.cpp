@@ -604,3 +604,19 @@ TEST_CASE("Without --out, boxsim run writes the scene's name with .dat in the wo
   CHECK(boxsim::readTrajectory((kDir / "tower10.dat").string()).frames.size() == 31);
   CHECK_FALSE(fs::exists(kScenes + "tower10.dat"));
 }
+
+TEST_CASE("boxsim --help and docs/cli.md list the same exit statuses", "[cli][docs]") {
+  const ScratchDir kDir;
+  const std::string docs = contentsOf(std::string(BOXSIM_SOURCE_DIR) + "/docs/cli.md");
+  REQUIRE_FALSE(docs.empty());
+  for (const std::string command : {"", "run ", "filter ", "render "}) {
+    const Result help = runBoxsim(kDir, command + "--help");
+    REQUIRE(help.status == 0);
+    for (const char* status : {"0", "1", "2", "3", "66", "73", "74"}) {
+      INFO("status " << status << " in boxsim " << command << "--help and docs/cli.md");
+      CHECK_THAT(help.stdoutText, Contains(std::string("\n  ") + status + " "));
+      CHECK_THAT(docs, Contains(std::string("\n| ") + status + " |"));
+    }
+    CHECK_THAT(help.stdoutText, Contains("docs/cli.md"));
+  }
+}
