@@ -51,6 +51,7 @@ class ScratchDir {
 
 const std::string kBoxsim = std::string(BOXSIM_BINARY_DIR) + "/boxsim";
 const std::string kScenes = std::string(BOXSIM_SOURCE_DIR) + "/chapters/impulse_damped/scenes/";
+const std::string kDie = kScenes + "die.json";
 
 /// The bytes of a file ("" when it cannot be read).
 std::string contentsOf(const std::string& path) {
@@ -382,7 +383,7 @@ TEST_CASE("An output path that is the scene, also through a symbolic or a hard l
           "[cli][input]") {
   const ScratchDir kDir;
   const std::string scene = (kDir / "scene.json").string();
-  fs::copy_file(kScenes + "die.json", scene);
+  fs::copy_file(kDie, scene);
   const std::string original = contentsOf(scene);
   fs::create_symlink(scene, kDir / "symbolic.dat");
   fs::create_hard_link(scene, kDir / "hard.dat");
@@ -410,21 +411,24 @@ TEST_CASE("A duration that is no whole number of steps is refused with the durat
           "steps that are, and one that is ends the run at the duration",
           "[cli][input]") {
   const ScratchDir kDir;
-  const std::string die = kScenes + "die.json";
   const std::string out = (kDir / "x.dat").string();
-  const Result between = runBoxsim(kDir, "run " + die + " --duration 1 --dt 0.4 -o " + out);
-  CHECK(between.status == 2);
-  CHECK_THAT(between.stderrText, Contains("the duration 1 s is 2.5 steps of dt = 0.4 s"));
-  CHECK_THAT(between.stderrText, Contains("use a duration of 0.8 s or 1.2 s"));
-  CHECK_THAT(between.stderrText, Contains("such as 0.333333333333 s or 0.5 s"));
-  const Result huge = runBoxsim(kDir, "run " + die + " --dt 1e308 -o " + out);
-  CHECK(huge.status == 2);
-  CHECK_THAT(huge.stderrText, Contains("5e-308 steps"));
-  CHECK_FALSE(fs::exists(out));
+  const std::pair<const char*, std::vector<std::string>> refusals[] = {
+      {"--duration 1 --dt 0.4",
+       {"the duration 1 s is 2.5 steps of dt = 0.4 s", "use a duration of 0.8 s or 1.2 s",
+        "such as 0.333333333333 s or 0.5 s"}},
+      {"--dt 1e308", {"the duration 5 s is 5e-308 steps", "such as 5 s"}},
+  };
+  for (const auto& [options, expected] : refusals) {
+    const Result r = runBoxsim(kDir, "run " + kDie + " " + options + " -o " + out);
+    INFO(options << ": " << r.stderrText);
+    CHECK(r.status == 2);
+    for (const std::string& text : expected) CHECK_THAT(r.stderrText, Contains(text));
+    CHECK_FALSE(fs::exists(out));
+  }
   // 1.2 / 0.4 and 0.3 / 0.1 are 3 only up to rounding: whole numbers of steps.
   for (const auto& [dt, duration, steps] :
        {std::tuple<double, double, std::size_t>{0.4, 1.2, 3}, {0.1, 0.3, 3}, {0.01, 7.3, 730}}) {
-    const Result r = runBoxsim(kDir, "run " + die + " --dt " + boxsim::shortestText(dt) +
+    const Result r = runBoxsim(kDir, "run " + kDie + " --dt " + boxsim::shortestText(dt) +
                                          " --duration " + boxsim::shortestText(duration) +
                                          " -q -o " + out);
     REQUIRE(r.status == 0);
@@ -461,7 +465,7 @@ TEST_CASE("A run's peak memory does not grow with its step count, raw, box-filte
                                    "--filter envelope"}) {
     long peak[2] = {0, 0};
     for (int i = 0; i < 2; ++i) {
-      std::vector<std::string> args{"run", kScenes + "die.json", "--dt", "0.01", "--duration",
+      std::vector<std::string> args{"run", kDie, "--dt", "0.01", "--duration",
                                     i == 0 ? "100" : "1000", "-q", "-o",
                                     (kDir / ("run" + std::to_string(i) + ".dat")).string()};
       std::istringstream words(filter);
@@ -485,7 +489,6 @@ TEST_CASE("Exit statuses follow one scheme: usage 2, bad file 3, missing input 6
           "creatable 73, write error 74",
           "[cli][input]") {
   const ScratchDir kDir;
-  const std::string die = kScenes + "die.json";
   const std::string out = (kDir / "out.dat").string();
   const std::string badScene = writeScene(kDir, "bad.json", "{\"bodies\": 3}");
   const std::string badTrajectory = writeScene(kDir, "bad.dat", "# boxsim trajectory 1\n1 2\n");
@@ -496,18 +499,18 @@ TEST_CASE("Exit statuses follow one scheme: usage 2, bad file 3, missing input 6
   };
   const Case cases[] = {
       {"", 2, "A subcommand is required"},
-      {"run " + die + " --bogus -o " + out, 2, "--bogus"},
-      {"run " + die + " --dt 0 -o " + out, 2, "--dt: '0' is not a finite number > 0 s"},
-      {"run " + die + " --duration -1 -o " + out, 2, "--duration: '-1' is not a finite number >= 0 s"},
-      {"run " + die + " --sleep maybe -o " + out, 2, "--sleep"},
+      {"run " + kDie + " --bogus -o " + out, 2, "--bogus"},
+      {"run " + kDie + " --dt 0 -o " + out, 2, "--dt: '0' is not a finite number > 0 s"},
+      {"run " + kDie + " --duration -1 -o " + out, 2, "--duration: '-1' is not a finite number >= 0 s"},
+      {"run " + kDie + " --sleep maybe -o " + out, 2, "--sleep"},
       {"run " + badScene + " -o " + out, 3, "bad.json: /bodies"},
       {"filter " + badTrajectory + " --filter box -o " + out, 3, "bad.dat:2:"},
       {"render " + badTrajectory + " -o " + (kDir / "x.png").string(), 3, "bad.dat:2:"},
       {"run " + (kDir / "nope.json").string() + " -o " + out, 66, "nope.json' does not exist"},
       {"filter " + (kDir / "nope.dat").string() + " --filter box -o " + out, 66, "nope.dat"},
       {"render " + (kDir / "nope.dat").string() + " -o " + (kDir / "x.png").string(), 66, "nope.dat"},
-      {"run " + die + " -o " + (kDir / "none" / "x.dat").string(), 73, "there is no folder"},
-      {"run " + die + " -o " + (kDir / "").string(), 73, "it is a folder"},
+      {"run " + kDie + " -o " + (kDir / "none" / "x.dat").string(), 73, "there is no folder"},
+      {"run " + kDie + " -o " + (kDir / "").string(), 73, "it is a folder"},
   };
   for (const Case& c : cases) {
     INFO("boxsim " << c.arguments);
@@ -519,7 +522,7 @@ TEST_CASE("Exit statuses follow one scheme: usage 2, bad file 3, missing input 6
   }
   // A file size limit of 64 KiB (128 blocks of 512 bytes; SIGXFSZ ignored, so the write fails
   // with EFBIG) stops the 1.7 MB trajectory midway: status 74, and nothing left behind.
-  const Result full = runBoxsim(kDir, "run " + die + " --dt 0.001 --duration 10 -q -o " + out,
+  const Result full = runBoxsim(kDir, "run " + kDie + " --dt 0.001 --duration 10 -q -o " + out,
                                 "ulimit -f 128; trap '' XFSZ; ");
   CHECK(full.status == 74);
   CHECK_THAT(full.stderrText, Contains("cannot write '" + out + "'"));
@@ -534,7 +537,7 @@ TEST_CASE("The progress bar is drawn on a terminal and never into a redirected s
   const fs::path dir = kDir / "";
   const std::string out = (kDir / "long.dat").string();
   // 10^7 steps: far longer than the test, which interrupts each run after about 2 s.
-  std::vector<std::string> args{"run", kScenes + "die.json", "--dt", "0.001", "--duration",
+  std::vector<std::string> args{"run", kDie, "--dt", "0.001", "--duration",
                                 "10000", "-o", out};
   const std::string err = (kDir / "stderr.txt").string();
   const pid_t redirected = spawnBoxsim(args, err);

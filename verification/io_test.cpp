@@ -179,6 +179,23 @@ std::string contentsOf(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
+
+/// An empty folder of the given name in the temporary directory, removed at the end.
+class ScratchFolder {
+ public:
+  explicit ScratchFolder(const std::string& name)
+      : path_(std::filesystem::temp_directory_path() / name) {
+    std::filesystem::remove_all(path_);
+    std::filesystem::create_directories(path_);
+  }
+  ScratchFolder(const ScratchFolder&) = delete;
+  ScratchFolder& operator=(const ScratchFolder&) = delete;
+  ~ScratchFolder() { std::filesystem::remove_all(path_); }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
 }  // namespace
 
 TEST_CASE("Trajectory files round-trip bit for bit", "[io][trajectory]") {
@@ -228,9 +245,8 @@ TEST_CASE("Files are written whole or not at all", "[io][atomic]") {
 TEST_CASE("A trajectory streamed frame by frame is the file writeTrajectory writes, byte for byte, "
           "and reads back frame by frame",
           "[io][trajectory][stream]") {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "boxsim_io_test_stream";
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const ScratchFolder scratch("boxsim_io_test_stream");
+  const std::filesystem::path& dir = scratch.path();
   const Trajectory t = threeFrames();
   const std::string whole = (dir / "whole.dat").string();
   const std::string streamed = (dir / "streamed.dat").string();
@@ -247,15 +263,13 @@ TEST_CASE("A trajectory streamed frame by frame is the file writeTrajectory writ
   TrajectoryCollector collector;
   readTrajectory(streamed, collector);
   CHECK(formatTrajectory(collector.trajectory()) == formatTrajectory(t));
-  std::filesystem::remove_all(dir);
 }
 
 TEST_CASE("A streamed trajectory file that is not finished leaves no file behind, and a path "
           "that cannot be written fails before the first frame",
           "[io][trajectory][stream][atomic]") {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "boxsim_io_test_abort";
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const ScratchFolder scratch("boxsim_io_test_abort");
+  const std::filesystem::path& dir = scratch.path();
   const std::string path = (dir / "out.dat").string();
   writeFileAtomically(path, "the earlier file");
   {
@@ -272,7 +286,6 @@ TEST_CASE("A streamed trajectory file that is not finished leaves no file behind
   CHECK_THROWS_WITH(TrajectoryFileWriter(dir.string()), Contains("it is a folder"));
   CHECK_THROWS_WITH(TrajectoryFileWriter("/dev/null"), Contains("not a regular file"));
   CHECK(fileCount(dir) == 1);
-  std::filesystem::remove_all(dir);
 }
 
 TEST_CASE("A trajectory file with a header line after its first frame is refused with the line",
