@@ -55,8 +55,8 @@ inline void runBriefly(const Scene& scene, const std::string& method) {
 }
 
 /// Feeds `text` to parseScene() and, when it loads, runs it briefly: under damped integration
-/// (\thesis{§5.2}) when it has at most kMaxSimulatedBodies bodies, and under the command line's
-/// default method, basic colliding (\thesis{§2.1}), when it has at most
+/// (\thesis{§5.2}, the command line's default method) when it has at most kMaxSimulatedBodies
+/// bodies, and under basic colliding (\thesis{§2.1}, the naive baseline) when it has at most
 /// kMaxBasicCollidingBodies. Returns the outcome when the input was handled as documented: loaded (and
 /// ran), or rejected with a SceneError or std::invalid_argument carrying a message.
 /// Throws std::logic_error for a rejection with an empty message; lets any other exception

@@ -3,6 +3,9 @@
 // thesis' claims on the chattering die made measurable, the envelope filter's two promises
 // (still chatter, no lag for fast bodies), the causal forms against the offline ones, the
 // measures against closed forms, bad parameters, and determinism.
+#include <gsl/gsl_movstat.h>
+#include <gsl/gsl_vector.h>
+
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -58,6 +61,34 @@ const Trajectory& chatteringDie() {
   }();
   return die;
 }
+
+/// GSL's centred moving mean of `values` over ±h samples, truncated at the ends: what the box
+/// filter computed offline before it was streamed.
+std::vector<double> gslMovingMean(const std::vector<double>& values, std::size_t h) {
+  std::vector<double> out(values.size());
+  gsl_movstat_workspace* workspace = gsl_movstat_alloc2(h, h);
+  const gsl_vector_const_view in = gsl_vector_const_view_array(values.data(), values.size());
+  gsl_vector_view result = gsl_vector_view_array(out.data(), out.size());
+  gsl_movstat_mean(GSL_MOVSTAT_END_TRUNCATE, &in.vector, &result.vector, workspace);
+  gsl_movstat_free(workspace);
+  return out;
+}
+
+/// A sink that counts what it is given and keeps the last frame.
+struct CountingSink : FrameSink {
+  std::map<std::string, std::string> meta;
+  long frames = 0;
+  bool finished = false;
+  TrajectoryFrame last;
+  void begin(const std::map<std::string, std::string>& m, const std::vector<TrajectoryBody>&) override {
+    meta = m;
+  }
+  void push(const TrajectoryFrame& f) override {
+    ++frames;
+    last = f;
+  }
+  void finish() override { finished = true; }
+};
 
 /// Quaternions equal as orientations and bit for bit up to the sign.
 bool sameUpToSign(const Quat& a, const Quat& b) {
@@ -322,5 +353,62 @@ TEST_CASE("Filtering is deterministic", "[filtering][determinism]") {
     CHECK(formatTrajectory(boxFilter(raw)) == formatTrajectory(boxFilter(raw)));
     CHECK(formatTrajectory(boxFilter(raw, markley)) == formatTrajectory(boxFilter(raw, markley)));
     CHECK(formatTrajectory(envelopeFilter(raw)) == formatTrajectory(envelopeFilter(raw)));
+  }
+}
+
+TEST_CASE("The streamed box filter gives GSL's moving mean bit for bit, frame k once frame k + H "
+          "has come in",
+          "[filtering][reference]") {
+  const Trajectory& raw = chatteringDie();
+  for (int h : {1, 2, 7}) {
+    BoxFilterParams p;
+    p.halfWidth = h;
+    TrajectoryCollector out;
+    BoxFilterStage stage(p, out);
+    stage.begin(raw.meta, raw.bodies);
+    for (std::size_t k = 0; k < raw.frames.size(); ++k) {
+      stage.push(raw.frames[k]);
+      // Frame k − H goes on as soon as frame k is in, not before.
+      CHECK(out.trajectory().frames.size() == (k >= static_cast<std::size_t>(h) ? k - h + 1 : 0));
+    }
+    stage.finish();
+    REQUIRE(out.trajectory().frames.size() == raw.frames.size());
+    CHECK(out.trajectory().meta.at("box_half_width") == std::to_string(h));
+    for (int c = 0; c < 3; ++c) {
+      std::vector<double> series;
+      for (const TrajectoryFrame& f : raw.frames) series.push_back(f.x[1][c]);
+      const std::vector<double> mean = gslMovingMean(series, static_cast<std::size_t>(h));
+      std::size_t differing = 0;
+      for (std::size_t k = 0; k < mean.size(); ++k)
+        differing += out.trajectory().frames[k].x[1][c] != mean[k] ? 1 : 0;
+      CHECK(differing == 0);
+    }
+  }
+}
+
+TEST_CASE("The streamed filters end runs shorter than their window as the offline ones do",
+          "[filtering][reference]") {
+  const Trajectory& raw = chatteringDie();
+  for (std::size_t n : {0, 1, 2, 3, 6}) {
+    Trajectory shortRun = raw;
+    shortRun.frames.resize(n);
+    BoxFilterParams p;
+    p.halfWidth = 3;
+    const Trajectory box = boxFilter(shortRun, p);
+    REQUIRE(box.frames.size() == n);
+    for (std::size_t k = 0; k < n; ++k) {
+      // Truncated windows: frame k is the mean of frames 0 … min(n − 1, k + 3).
+      const std::size_t hi = std::min(n - 1, k + 3);
+      const std::size_t lo = k >= 3 ? k - 3 : 0;
+      Vec3 sum = Vec3::Zero();
+      for (std::size_t j = lo; j <= hi; ++j) sum += raw.frames[j].x[1];
+      CHECK((box.frames[k].x[1] - sum / static_cast<double>(hi - lo + 1)).norm() < 1e-13);
+    }
+    CountingSink sink;
+    const std::unique_ptr<FrameSink> stage = makeFilterStage(FilterChoice{"envelope", {}, {}, {}}, sink);
+    replayTrajectory(shortRun, *stage);
+    CHECK(sink.frames == static_cast<long>(n));
+    CHECK(sink.finished);
+    CHECK(sink.meta.at("filter") == "envelope");
   }
 }

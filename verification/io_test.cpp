@@ -8,9 +8,11 @@
 #include <fstream>
 
 #include "boxsim/io/atomic_file.hpp"
+#include "boxsim/io/frame_sink.hpp"
 #include "boxsim/io/scene.hpp"
 #include "boxsim/io/scene_builders.hpp"
 #include "boxsim/io/trajectory.hpp"
+#include "boxsim/io/trajectory_file_writer.hpp"
 #include "boxsim/techniques.hpp"
 
 using namespace boxsim;
@@ -176,7 +178,9 @@ TEST_CASE("A spinning clump draws every spin component uniformly between minus a
   CHECK_THAT(errorOf(R"({"builders": [{"type": "clump", "spin": -1}]})"), Contains("spin"));
 }
 
-TEST_CASE("Trajectory files round-trip bit for bit", "[io][trajectory]") {
+namespace {
+/// Three frames of a ground and a box, with numbers that need all 17 digits.
+Trajectory threeFrames() {
   Trajectory t;
   t.meta = {{"method", "basic_colliding"}, {"seed", "7"}};
   t.bodies = {{"ground", Vec3(50, 0.5, 50), true}, {"box", Vec3(0.5, 0.25, 0.125), false}};
@@ -192,6 +196,40 @@ TEST_CASE("Trajectory files round-trip bit for bit", "[io][trajectory]") {
     f.q = {Quat::Identity(), Quat(Eigen::AngleAxisd(0.1 * k + 0.01, Vec3(1, 2, 3).normalized()))};
     t.frames.push_back(f);
   }
+  return t;
+}
+
+/// The files in `dir`.
+std::size_t fileCount(const std::filesystem::path& dir) {
+  return static_cast<std::size_t>(std::distance(std::filesystem::directory_iterator(dir),
+                                                std::filesystem::directory_iterator{}));
+}
+
+std::string contentsOf(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+/// An empty folder of the given name in the temporary directory, removed at the end.
+class ScratchFolder {
+ public:
+  explicit ScratchFolder(const std::string& name)
+      : path_(std::filesystem::temp_directory_path() / name) {
+    std::filesystem::remove_all(path_);
+    std::filesystem::create_directories(path_);
+  }
+  ScratchFolder(const ScratchFolder&) = delete;
+  ScratchFolder& operator=(const ScratchFolder&) = delete;
+  ~ScratchFolder() { std::filesystem::remove_all(path_); }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+}  // namespace
+
+TEST_CASE("Trajectory files round-trip bit for bit", "[io][trajectory]") {
+  const Trajectory t = threeFrames();
   const std::string path = (std::filesystem::temp_directory_path() / "boxsim_io_test_traj.dat").string();
   writeTrajectory(path, t);
   const Trajectory r = readTrajectory(path);
@@ -232,4 +270,60 @@ TEST_CASE("Files are written whole or not at all", "[io][atomic]") {
                     Contains("missing/x.txt"));
   CHECK(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator{}) == 1);
   std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("A trajectory streamed frame by frame is the file writeTrajectory writes, byte for byte, "
+          "and reads back frame by frame",
+          "[io][trajectory][stream]") {
+  const ScratchFolder scratch("boxsim_io_test_stream");
+  const std::filesystem::path& dir = scratch.path();
+  const Trajectory t = threeFrames();
+  const std::string whole = (dir / "whole.dat").string();
+  const std::string streamed = (dir / "streamed.dat").string();
+  writeTrajectory(whole, t);
+  {
+    TrajectoryFileWriter writer(streamed);
+    CHECK(std::filesystem::exists(writer.temporaryPath()));  // made before any frame
+    CHECK_FALSE(std::filesystem::exists(streamed));          // the target only at the end
+    replayTrajectory(t, writer);
+    CHECK(writer.temporaryPath().empty());
+  }
+  CHECK(contentsOf(streamed) == contentsOf(whole));
+  CHECK(fileCount(dir) == 2);
+  TrajectoryCollector collector;
+  readTrajectory(streamed, collector);
+  CHECK(formatTrajectory(collector.trajectory()) == formatTrajectory(t));
+}
+
+TEST_CASE("A streamed trajectory file that is not finished leaves no file behind, and a path "
+          "that cannot be written fails before the first frame",
+          "[io][trajectory][stream][atomic]") {
+  const ScratchFolder scratch("boxsim_io_test_abort");
+  const std::filesystem::path& dir = scratch.path();
+  const std::string path = (dir / "out.dat").string();
+  writeFileAtomically(path, "the earlier file");
+  {
+    TrajectoryFileWriter writer(path);
+    const Trajectory t = threeFrames();
+    writer.begin(t.meta, t.bodies);
+    writer.push(t.frames[0]);
+  }  // an exception would leave the same way: no finish()
+  CHECK(contentsOf(path) == "the earlier file");
+  CHECK(fileCount(dir) == 1);
+  CHECK_THROWS_AS(TrajectoryFileWriter((dir / "missing" / "x.dat").string()), CannotCreateError);
+  CHECK_THROWS_WITH(TrajectoryFileWriter((dir / "missing" / "x.dat").string()),
+                    Contains("there is no folder"));
+  CHECK_THROWS_WITH(TrajectoryFileWriter(dir.string()), Contains("it is a folder"));
+  CHECK_THROWS_WITH(TrajectoryFileWriter("/dev/null"), Contains("not a regular file"));
+  CHECK(fileCount(dir) == 1);
+}
+
+TEST_CASE("A trajectory file with a header line after its first frame is refused with the line",
+          "[io][trajectory][input]") {
+  const std::string path = (std::filesystem::temp_directory_path() / "boxsim_io_test_late.dat").string();
+  writeFileAtomically(path, "# boxsim trajectory 1\n# body 0 box half_extents 1 1 1 immovable 0\n"
+                            "0 0 0 0 0 0 0 0 0 0 1 0 0 0\n# method: damped\n");
+  CHECK_THROWS_AS(readTrajectory(path), TrajectoryFormatError);
+  CHECK_THROWS_WITH(readTrajectory(path), Contains("boxsim_io_test_late.dat:4: a header line after"));
+  std::remove(path.c_str());
 }

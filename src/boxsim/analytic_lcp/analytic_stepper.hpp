@@ -86,6 +86,7 @@ class AnalyticStepper final : public Stepper {
   explicit AnalyticStepper(const AnalyticParams& params = {});
   std::string name() const override { return "analytic"; }
   std::map<std::string, std::string> parameters() const override;
+  std::string workLimit() const override { return collisionLoopWorkLimit(params_.loop); }
   /// One step of dt s: advanceColliding with the LCP contact forces and sticky collisions.
   StepStats step(World& world, double dt) override;
   /// The wrench on each body of the LCP contact forces at the world's current state (the

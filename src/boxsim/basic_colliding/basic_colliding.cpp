@@ -18,6 +18,12 @@ std::map<std::string, std::string> BasicCollidingStepper::parameters() const {
           {"max_impulse_passes", std::to_string(params_.maxImpulsePasses)}};
 }
 
+std::string collisionLoopWorkLimit(const BasicCollidingParams& params) {
+  return "at most " + std::to_string(params.maxEventsPerStep) +
+         " collision events a step (max_events_per_step); collisions crowding together as "
+         "bodies come to rest reach it (thesis §4.3)";
+}
+
 void requireCollisionLoopParams(const BasicCollidingParams& params, const std::string& method) {
   if (!(params.timeOfImpact.timeTolerance > 0.0))
     throw std::invalid_argument(method + ": timeTolerance must be > 0 s");

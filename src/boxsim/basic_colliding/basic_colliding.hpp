@@ -74,6 +74,11 @@ struct CollisionLoopHooks {
 StepStats advanceColliding(World& world, double dt, const BasicCollidingParams& params,
                            const CollisionLoopHooks& hooks = {});
 
+/// The work limit of advanceColliding() in words (Stepper::workLimit()): the bound of
+/// params.maxEventsPerStep collision events a step, which collisions crowding together as
+/// bodies come to rest meet (\thesis{§4.3}).
+std::string collisionLoopWorkLimit(const BasicCollidingParams& params);
+
 /// The basic colliding technique as a Stepper ("basic_colliding").
 class BasicCollidingStepper final : public Stepper {
  public:
@@ -82,6 +87,7 @@ class BasicCollidingStepper final : public Stepper {
   explicit BasicCollidingStepper(const BasicCollidingParams& params = {});
   std::string name() const override { return "basic_colliding"; }
   std::map<std::string, std::string> parameters() const override;
+  std::string workLimit() const override { return collisionLoopWorkLimit(params_); }
   /// Advances by dt (s): \thesis{§2.1} steps 1-4, repeated until the whole dt is covered
   /// (advanceColliding with no hooks).
   StepStats step(World& world, double dt) override;

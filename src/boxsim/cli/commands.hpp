@@ -8,7 +8,8 @@
 
 namespace boxsim::cli {
 
-/// Adds `boxsim run SCENE.json --method M --dt S --duration S --out TRAJ.dat`.
+/// Adds `boxsim run SCENE.json [--method M] [--dt S] [--duration S] [--out TRAJ.dat]`
+/// (docs/cli.md: defaults, output files, exit statuses).
 void addRunCommand(CLI::App& app);
 /// Adds `boxsim render TRAJ.dat --out FILE.png|FILE.gif|FILE.svg [--frame N ...]`.
 void addRenderCommand(CLI::App& app);

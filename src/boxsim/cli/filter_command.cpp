@@ -1,9 +1,12 @@
-#include <iostream>
 #include <memory>
 #include <string>
 
+#include "boxsim/cli/checks.hpp"
 #include "boxsim/cli/commands.hpp"
+#include "boxsim/cli/exit_status.hpp"
+#include "boxsim/cli/remove_on_signal.hpp"
 #include "boxsim/io/trajectory.hpp"
+#include "boxsim/io/trajectory_file_writer.hpp"
 
 namespace boxsim::cli {
 
@@ -26,30 +29,37 @@ void addFilterOptions(CLI::App& cmd, FilterChoice& choice, bool required) {
                  "follows (default: the envelope radius over the body's half diagonal)");
 }
 
+namespace {
+
+struct FilterArgs {
+  std::string in;
+  std::string out;
+  FilterChoice choice;
+};
+
+/// Streams the input trajectory through the filter into the output, frame by frame.
+void filter(const FilterArgs& args) {
+  validateFilterChoice(args.choice);
+  requireReadableInput(args.in, "trajectory file");
+  requireDistinctOutput(args.out, {args.in});
+  TrajectoryFileWriter writer(args.out);
+  const RemoveOnSignal cleanup(writer.temporaryPath());
+  const std::unique_ptr<FrameSink> stage = makeFilterStage(args.choice, writer);
+  readTrajectory(args.in, stage ? *stage : writer);
+}
+
+}  // namespace
+
 void addFilterCommand(CLI::App& app) {
-  struct FilterArgs {
-    std::string in;
-    std::string out;
-    FilterChoice choice;
-  };
   auto args = std::make_shared<FilterArgs>();
   CLI::App* cmd = app.add_subcommand(
       "filter", "Filter a recorded trajectory (thesis §5.5) and write the filtered one; frame "
                 "count, times and bodies stay, energies and counters are kept as recorded");
   cmd->add_option("trajectory", args->in, "Trajectory file written by `boxsim run`")
-      ->required()
-      ->check(CLI::ExistingFile);
+      ->required();
   cmd->add_option("--out,-o", args->out, "Filtered trajectory to write (.dat)")->required();
   addFilterOptions(*cmd, args->choice, true);
-  cmd->callback([args] {
-    try {
-      validateFilterChoice(args->choice);
-      writeTrajectory(args->out, applyFilter(readTrajectory(args->in), args->choice));
-    } catch (const std::exception& e) {
-      std::cerr << "boxsim filter: error: " << e.what() << "\n";
-      throw CLI::RuntimeError(2);
-    }
-  });
+  cmd->callback([args] { runGuarded([&] { filter(*args); }); });
 }
 
 }  // namespace boxsim::cli

@@ -1,7 +1,10 @@
-// The `boxsim` command: runs scenes under any technique and renders trajectories.
+// The `boxsim` command: runs scenes under any technique, filters and renders trajectories.
+// Exit statuses: cli/exit_status.hpp, docs/cli.md.
+#include <exception>
 #include <iostream>
 
 #include "boxsim/cli/commands.hpp"
+#include "boxsim/cli/exit_status.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -11,13 +14,14 @@ int main(int argc, char** argv) {
   boxsim::cli::addRunCommand(app);
   boxsim::cli::addRenderCommand(app);
   boxsim::cli::addFilterCommand(app);
+  boxsim::cli::configureExits(app);
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+  } catch (const CLI::Error& e) {
+    return boxsim::cli::exitStatusOf(app, e);
   } catch (const std::exception& e) {
     std::cerr << "boxsim: error: " << e.what() << "\n";
-    return 1;
+    return static_cast<int>(boxsim::cli::ExitStatus::Failure);
   }
   return 0;
 }

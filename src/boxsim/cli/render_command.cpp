@@ -1,10 +1,11 @@
-#include <iostream>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "boxsim/cli/checks.hpp"
 #include "boxsim/cli/commands.hpp"
+#include "boxsim/cli/exit_status.hpp"
 #include "boxsim/io/render.hpp"
 #include "boxsim/io/trajectory.hpp"
 
@@ -42,8 +43,7 @@ void addRenderCommand(CLI::App& app) {
       "render", "Draw a trajectory in 3D with gnuplot: a frame (PNG, SVG), a strip of frames "
                 "(PNG with several --frame), or the whole run animated (GIF)");
   cmd->add_option("trajectory", args->trajectory, "Trajectory file written by `boxsim run`")
-      ->required()
-      ->check(CLI::ExistingFile);
+      ->required();
   cmd->add_option("--out,-o", args->out, "Image to write: FILE.png, FILE.svg or FILE.gif")
       ->required();
   cmd->add_option("--frame,-f", args->frames,
@@ -56,7 +56,9 @@ void addRenderCommand(CLI::App& app) {
                   "Fill colour of a body, NAME=RRGGBB (repeat for several bodies); the others "
                   "keep the palette");
   cmd->callback([args] {
-    try {
+    runGuarded([&] {
+      requireReadableInput(args->trajectory, "trajectory file");
+      requireDistinctOutput(args->out, {args->trajectory});
       const Trajectory trajectory = readTrajectory(args->trajectory);
       RenderOptions options;
       options.width = args->width;
@@ -64,10 +66,7 @@ void addRenderCommand(CLI::App& app) {
       options.frames = args->frames;
       for (const std::string& c : args->colours) options.bodyColours.insert(parseBodyColour(c));
       renderTrajectory(trajectory, args->out, options);
-    } catch (const std::exception& e) {
-      std::cerr << "boxsim render: error: " << e.what() << "\n";
-      throw CLI::RuntimeError(2);
-    }
+    });
   });
 }
 

@@ -1,13 +1,20 @@
-#include <chrono>
-#include <optional>
-#include <cstdio>
-#include <iostream>
-#include <sstream>
+#include <unistd.h>
 
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+
+#include "boxsim/cli/checks.hpp"
 #include "boxsim/cli/commands.hpp"
+#include "boxsim/cli/exit_status.hpp"
+#include "boxsim/cli/remove_on_signal.hpp"
 #include "boxsim/collision/broad_phase.hpp"
 #include "boxsim/io/scene.hpp"
 #include "boxsim/io/simulate.hpp"
+#include "boxsim/io/trajectory_file_writer.hpp"
 #include "boxsim/techniques.hpp"
 
 namespace boxsim::cli {
@@ -16,7 +23,7 @@ namespace {
 
 struct RunArgs {
   std::string scene;
-  std::string method = "basic_colliding";
+  std::string method = "damped";  // damped integration, the thesis' contribution (§5.2)
   std::string integrator;  // empty: the method's default
   std::string contactNormal;  // empty: the method's default
   std::string contactGathering;  // empty: the method's default
@@ -25,12 +32,14 @@ struct RunArgs {
   std::optional<unsigned long> plausibilitySeed;
   double dt = 1.0 / 60.0;
   double duration = 5.0;
-  std::string out;
+  std::string out;            // empty: <scene stem>.dat in the working directory
   bool quiet = false;
   FilterChoice filter;  // thesis §5.5; empty name: the raw trajectory is written
 };
 
-/// A one-line progress bar on stderr, drawn only once the run has taken over a second.
+/// A one-line progress bar on stderr, drawn only once the run has taken over a second, and
+/// only when enabled (run_command enables it for a terminal: redrawn with '\r', it would
+/// litter a file or a pipe).
 class ProgressBar {
  public:
   explicit ProgressBar(bool enabled) : enabled_(enabled), start_(Clock::now()) {}
@@ -67,7 +76,7 @@ class ProgressBar {
   }
 };
 
-int run(const RunArgs& args) {
+TechniqueOptions techniqueOptions(const RunArgs& args) {
   TechniqueOptions options;
   if (!args.integrator.empty()) options.integrator = parseIntegrator(args.integrator);
   if (!args.contactNormal.empty()) options.contactNormal = parseContactNormalModel(args.contactNormal);
@@ -75,50 +84,76 @@ int run(const RunArgs& args) {
     options.contactGathering = parseContactGathering(args.contactGathering);
   if (!args.sleep.empty()) options.sleep = args.sleep == "on";
   options.plausibilitySeed = args.plausibilitySeed;
-  // Build the stepper before loading the scene so an unknown method fails fast.
-  std::unique_ptr<Stepper> stepper = makeStepper(args.method, options);
-  checkedStepCount(args.dt, args.duration, 1);
-  validateFilterChoice(args.filter);
-  Scene scene = loadScene(args.scene);
-  if (!args.broadPhase.empty()) scene.world.broadPhase = parseBroadPhase(args.broadPhase);
-  Recorder recorder(scene.world,
-                    runParameters(*stepper, scene.world, args.scene, args.dt, args.duration));
-  ProgressBar bar(!args.quiet);
-  SimulateOptions simulateOptions;
-  simulateOptions.dt = args.dt;
-  simulateOptions.duration = args.duration;
-  simulateOptions.progress = [&bar](double f) { bar.update(f); };
-  const SimulateSummary summary = simulate(scene.world, *stepper, simulateOptions, recorder);
-  bar.finish();
-  if (args.filter.name.empty())
-    recorder.write(args.out);
-  else
-    writeTrajectory(args.out, applyFilter(recorder.trajectory(), args.filter));
-  if (!args.quiet)
+  return options;
+}
+
+/// --out, or else the scene's file name with .dat in the working directory.
+std::string outputPath(const RunArgs& args) {
+  if (!args.out.empty()) return args.out;
+  return std::filesystem::path(args.scene).stem().string() + ".dat";
+}
+
+/// The summary line (unless quiet) and the warning of a run that met its method's work limit.
+void report(const SimulateSummary& summary, const Stepper& stepper, const std::string& out,
+            bool quiet) {
+  if (!quiet)
     std::cerr << "boxsim run: " << summary.steps << " steps, " << summary.events
               << (summary.bisections > 0
                       ? " collision events, " + std::to_string(summary.bisections) + " bisection steps"
                       : " impulses")
-              << " -> " << args.out << "\n";
+              << " -> " << out << "\n";
   if (summary.limitedSteps > 0)
     std::cerr << "boxsim run: warning: " << summary.limitedSteps << " of " << summary.steps
-              << " steps hit the work limit of the '" << stepper->name()
-              << "' method (for basic_colliding and analytic: collisions crowding together as "
-                 "bodies come to rest, thesis §4.3) and dropped the rest of their time step\n";
-  return 0;
+              << " steps hit the work limit of the '" << stepper.name()
+              << "' method and dropped the rest of their time step: " << stepper.workLimit()
+              << "\n";
+}
+
+void run(const RunArgs& args) {
+  // Everything that can be checked is checked before the run, the output path included.
+  const std::unique_ptr<Stepper> stepper = makeStepper(args.method, techniqueOptions(args));
+  checkedStepCount(args.dt, args.duration);
+  validateFilterChoice(args.filter);
+  const std::string out = outputPath(args);
+  requireReadableInput(args.scene, "scene file");
+  requireDistinctOutput(out, {args.scene});
+  TrajectoryFileWriter writer(out);  // makes the temporary file beside `out` now
+  const RemoveOnSignal cleanup(writer.temporaryPath());
+  Scene scene = loadScene(args.scene);
+  if (!args.broadPhase.empty()) scene.world.broadPhase = parseBroadPhase(args.broadPhase);
+
+  // Frames stream through the filter (if any) into the temporary file, renamed at the end.
+  const std::unique_ptr<FrameSink> filter = makeFilterStage(args.filter, writer);
+  FrameSink& sink = filter ? *filter : writer;
+  Recorder recorder(scene.world,
+                    runParameters(*stepper, scene.world, args.scene, args.dt, args.duration), sink);
+  ProgressBar bar(!args.quiet && ::isatty(STDERR_FILENO) == 1);
+  SimulateOptions options;
+  options.dt = args.dt;
+  options.duration = args.duration;
+  options.progress = [&bar](double f) { bar.update(f); };
+  const SimulateSummary summary = simulate(scene.world, *stepper, options, recorder);
+  bar.finish();
+  sink.finish();
+  report(summary, *stepper, out, args.quiet);
 }
 
 }  // namespace
 
 void addRunCommand(CLI::App& app) {
   auto args = std::make_shared<RunArgs>();
-  CLI::App* cmd = app.add_subcommand("run", "Run a scene under a technique and write its trajectory");
+  CLI::App* cmd = app.add_subcommand(
+      "run", "Run a scene under a technique and write its trajectory (frame by frame into a "
+             "temporary file beside the output, renamed over it at the end)");
   cmd->add_option("scene", args->scene, "Scene file (JSON; see docs/scene_format.md)")
-      ->required()
-      ->check(CLI::ExistingFile);
+      ->required();
   std::string methods;
   for (const std::string& m : methodNames()) methods += (methods.empty() ? "" : ", ") + m;
-  cmd->add_option("--method,-m", args->method, "Technique: " + methods)->capture_default_str();
+  cmd->add_option("--method,-m", args->method,
+                  "Technique: " + methods +
+                      " (default damped: damped integration, thesis §5.2, the thesis' own "
+                      "technique; basic_colliding is the naive baseline of §2.1)")
+      ->capture_default_str();
   cmd->add_option("--integrator", args->integrator,
                   "Integrator between collisions: forward_euler, semi_implicit_euler, "
                   "runge_kutta_4 "
@@ -143,24 +178,21 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("--plausibility-seed", args->plausibilitySeed,
                   "Turn on the random perturbation of fast collisions (damped, thesis §4.2) "
                   "with this seed; the seed is written into the output header");
-  cmd->add_option("--dt", args->dt, "Time step, s (> 0)")
+  cmd->add_option("--dt", args->dt, "Time step, s")
+      ->default_str(shortestText(args->dt))
+      ->check(finiteNumber(0.0, false, "s"));
+  cmd->add_option("--duration,-t", args->duration,
+                  "Simulated time, s: a whole number of time steps, so that every step is dt "
+                  "long and the run ends at the duration")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--duration,-t", args->duration, "Simulated time, s (>= 0)")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--out,-o", args->out, "Trajectory file to write (.dat, gnuplot columns)")
-      ->required();
-  cmd->add_flag("--quiet,-q", args->quiet, "No progress bar and no summary");
+      ->check(finiteNumber(0.0, true, "s"));
+  cmd->add_option("--out,-o", args->out,
+                  "Trajectory file to write (.dat, gnuplot columns); default: the scene's file "
+                  "name with .dat, in the working directory");
+  cmd->add_flag("--quiet,-q", args->quiet,
+                "No progress bar and no summary (the bar is drawn only on a terminal anyway)");
   addFilterOptions(*cmd, args->filter, false);
-  cmd->callback([args] {
-    try {
-      run(*args);
-    } catch (const std::exception& e) {
-      std::cerr << "boxsim run: error: " << e.what() << "\n";
-      throw CLI::RuntimeError(2);
-    }
-  });
+  cmd->callback([args] { runGuarded([&] { run(*args); }); });
 }
 
 }  // namespace boxsim::cli

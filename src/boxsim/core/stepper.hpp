@@ -55,6 +55,9 @@ class Stepper {
   /// The technique's parameters as text, for the header of every output file
   /// (name -> value, e.g. "integrator" -> "semi_implicit_euler").
   virtual std::map<std::string, std::string> parameters() const { return {}; }
+  /// The work limit behind StepStats::limitReached, in words for a warning: the bound and what
+  /// makes a run meet it. Empty for a technique without one.
+  virtual std::string workLimit() const { return {}; }
   /// Advances `world` by dt seconds (dt > 0) and reports what it did.
   virtual StepStats step(World& world, double dt) = 0;
 };

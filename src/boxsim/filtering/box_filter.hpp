@@ -8,6 +8,8 @@
 /// - boxFilter() filters a whole recorded run offline, with the window centred on each frame:
 ///   frame k shows the mean of frames k − H … k + H (H = BoxFilterParams::halfWidth; H = 2 is
 ///   the thesis' two neighbouring frames on each side). It does not delay anything.
+///   BoxFilterStage computes the same frames, bit for bit, from a run streamed frame by frame,
+///   holding only the window.
 /// - CausalBoxFilter runs beside a simulation, as the thesis' last paragraph of §5.5 proposes:
 ///   it keeps the last 2H + 1 poses of each body and shows, at the newest frame k, the mean of
 ///   frames k − 2H … k, which is the centred filter's frame k − H. The display lags the
@@ -22,9 +24,13 @@
 #pragma once
 
 #include <deque>
+#include <map>
+#include <memory>
+#include <string>
 #include <vector>
 
 #include "boxsim/filtering/orientation_average.hpp"
+#include "boxsim/io/frame_sink.hpp"
 #include "boxsim/io/trajectory.hpp"
 
 namespace boxsim {
@@ -59,6 +65,40 @@ void validateBoxFilterParams(const BoxFilterParams& params);
 /// \throws std::invalid_argument for bad parameters (validateBoxFilterParams()) or a frame
 ///         whose pose count differs from the body count.
 Trajectory boxFilter(const Trajectory& trajectory, const BoxFilterParams& params = {});
+
+/// boxFilter() as a stage of a streamed run: frames come in one at a time, and frame k goes on
+/// to `next` once frame k + H has come in (the last H frames in finish()), each equal bit for
+/// bit to boxFilter()'s frame k. Positions go through GSL's moving-mean accumulator
+/// (gsl_movstat_accum_mean), driven in the order gsl_movstat_mean() drives it with
+/// GSL_MOVSTAT_END_TRUNCATE; orientations are averaged over the same truncated windows. It
+/// holds the last 2H + 1 frames and one accumulator of 2H + 1 samples per coordinate of every
+/// movable body, however many frames pass.
+class BoxFilterStage final : public FrameSink {
+ public:
+  /// A stage in front of `next` (which must outlive it).
+  /// \throws std::invalid_argument for bad parameters (validateBoxFilterParams()).
+  BoxFilterStage(const BoxFilterParams& params, FrameSink& next);
+  ~BoxFilterStage() override;
+  /// Begins `next` with `meta` plus the filter's header lines (as boxFilter() adds them).
+  void begin(const std::map<std::string, std::string>& meta,
+             const std::vector<TrajectoryBody>& bodies) override;
+  /// Takes the next frame; passes on the frame H frames earlier, filtered, once it exists.
+  /// \throws std::invalid_argument when the frame's pose count differs from the body count.
+  void push(const TrajectoryFrame& frame) override;
+  /// Passes on the last H frames, filtered over their truncated windows, and finishes `next`.
+  void finish() override;
+
+ private:
+  struct Accumulators;
+  BoxFilterParams params_;
+  FrameSink& next_;
+  std::vector<TrajectoryBody> bodies_;
+  std::unique_ptr<Accumulators> means_;  // one moving mean per coordinate of a movable body
+  std::deque<TrajectoryFrame> window_;   // the last 2H + 1 frames, oldest first
+  long received_ = 0;                    // frames pushed so far
+
+  void emit(long k);
+};
 
 /// The box filter for real time (\thesis{§5.5}, last paragraph): it stores the last 2H + 1
 /// frames of poses and turns the newest frame into the pose to display, the mean over the

@@ -63,19 +63,31 @@ TrajectoryFrame CausalEnvelopeFilter::push(const TrajectoryFrame& frame) {
   return display;
 }
 
+EnvelopeFilterStage::EnvelopeFilterStage(const EnvelopeFilterParams& params, FrameSink& next)
+    : params_(params), next_(next) {
+  validateEnvelopeFilterParams(params_);
+}
+
+void EnvelopeFilterStage::begin(const std::map<std::string, std::string>& meta,
+                                const std::vector<TrajectoryBody>& bodies) {
+  filter_.emplace(bodies, params_);
+  std::map<std::string, std::string> out = meta;
+  const std::string previous = meta.count("filter") ? meta.at("filter") : "";
+  out["filter"] = previous.empty() ? "envelope" : previous + ", then envelope";
+  out["envelope_radius"] =
+      params_.radius ? shortestText(*params_.radius) + " m"
+                     : shortestText(kEnvelopeRadiusFraction) + " x smallest half extent of each body (m)";
+  out["envelope_angle"] =
+      params_.angle ? shortestText(*params_.angle) + " rad"
+                    : "envelope radius / half diagonal of each body (rad)";
+  next_.begin(out, bodies);
+}
+
 Trajectory envelopeFilter(const Trajectory& trajectory, const EnvelopeFilterParams& params) {
-  CausalEnvelopeFilter filter(trajectory.bodies, params);
-  Trajectory out = trajectory;
-  for (std::size_t k = 0; k < out.frames.size(); ++k) out.frames[k] = filter.push(trajectory.frames[k]);
-  const std::string previous = trajectory.meta.count("filter") ? trajectory.meta.at("filter") : "";
-  out.meta["filter"] = previous.empty() ? "envelope" : previous + ", then envelope";
-  out.meta["envelope_radius"] =
-      params.radius ? shortestText(*params.radius) + " m"
-                    : shortestText(kEnvelopeRadiusFraction) + " x smallest half extent of each body (m)";
-  out.meta["envelope_angle"] =
-      params.angle ? shortestText(*params.angle) + " rad"
-                   : "envelope radius / half diagonal of each body (rad)";
-  return out;
+  TrajectoryCollector out;
+  EnvelopeFilterStage stage(params, out);
+  replayTrajectory(trajectory, stage);
+  return out.take();
 }
 
 }  // namespace boxsim

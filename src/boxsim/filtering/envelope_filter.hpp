@@ -10,12 +10,16 @@
 /// half-angle θ around the stable orientation: the body leaves it when its position is more
 /// than r from the stable position, or its orientation is rotated by more than θ from the
 /// stable orientation. Each frame depends only on the frames before it, so the filter is
-/// causal by nature; envelopeFilter() runs CausalEnvelopeFilter over the recording.
+/// causal by nature; envelopeFilter() runs CausalEnvelopeFilter over the recording, and
+/// EnvelopeFilterStage over a run streamed frame by frame.
 #pragma once
 
+#include <map>
 #include <optional>
+#include <string>
 #include <vector>
 
+#include "boxsim/io/frame_sink.hpp"
 #include "boxsim/io/trajectory.hpp"
 
 namespace boxsim {
@@ -73,6 +77,28 @@ class CausalEnvelopeFilter {
   std::vector<Vec3> stableX_;
   std::vector<Quat> stableQ_;
   bool started_ = false;
+};
+
+/// envelopeFilter() as a stage of a streamed run: every frame goes on to `next` as soon as it
+/// comes in, with the stable poses of a CausalEnvelopeFilter, so the stage holds one stable
+/// pose per body however many frames pass.
+class EnvelopeFilterStage final : public FrameSink {
+ public:
+  /// A stage in front of `next` (which must outlive it).
+  /// \throws std::invalid_argument for bad parameters (validateEnvelopeFilterParams()).
+  EnvelopeFilterStage(const EnvelopeFilterParams& params, FrameSink& next);
+  /// Begins `next` with `meta` plus the filter's header lines (as envelopeFilter() adds them).
+  void begin(const std::map<std::string, std::string>& meta,
+             const std::vector<TrajectoryBody>& bodies) override;
+  /// Passes the frame on with the stable poses (CausalEnvelopeFilter::push()).
+  void push(const TrajectoryFrame& frame) override { next_.push(filter_->push(frame)); }
+  /// Finishes `next`.
+  void finish() override { next_.finish(); }
+
+ private:
+  EnvelopeFilterParams params_;
+  FrameSink& next_;
+  std::optional<CausalEnvelopeFilter> filter_;
 };
 
 /// The run `trajectory` envelope-filtered (\thesis{§5.5}): CausalEnvelopeFilter applied to its

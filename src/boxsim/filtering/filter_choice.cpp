@@ -54,4 +54,12 @@ Trajectory applyFilter(const Trajectory& trajectory, const FilterChoice& choice)
   return trajectory;
 }
 
+std::unique_ptr<FrameSink> makeFilterStage(const FilterChoice& choice, FrameSink& next) {
+  validateFilterChoice(choice);
+  if (choice.name == "box") return std::make_unique<BoxFilterStage>(boxParams(choice), next);
+  if (choice.name == "envelope")
+    return std::make_unique<EnvelopeFilterStage>(envelopeParams(choice), next);
+  return nullptr;
+}
+
 }  // namespace boxsim

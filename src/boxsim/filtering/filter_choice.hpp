@@ -3,9 +3,11 @@
 /// `boxsim filter`) names it, with its parameters checked together.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 
+#include "boxsim/io/frame_sink.hpp"
 #include "boxsim/io/trajectory.hpp"
 
 namespace boxsim {
@@ -30,5 +32,11 @@ void validateFilterChoice(const FilterChoice& choice);
 /// filter and its parameters in the header); an empty name returns it unchanged.
 /// \throws std::invalid_argument as validateFilterChoice(), and as the filter does.
 Trajectory applyFilter(const Trajectory& trajectory, const FilterChoice& choice);
+
+/// The filter `choice` names as a stage in front of `next` (BoxFilterStage or
+/// EnvelopeFilterStage), for a run streamed frame by frame; an empty name returns nullptr (the
+/// frames go to `next` unfiltered).
+/// \throws std::invalid_argument as validateFilterChoice().
+std::unique_ptr<FrameSink> makeFilterStage(const FilterChoice& choice, FrameSink& next);
 
 }  // namespace boxsim

@@ -11,12 +11,33 @@
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
+#include <utility>
 
 namespace boxsim {
 
 namespace {
-std::runtime_error ioError(const std::string& what, const std::string& path) {
-  return std::runtime_error(what + " '" + path + "': " + std::strerror(errno));
+std::string systemError(const std::string& what, const std::string& path) {
+  return what + " '" + path + "': " + std::strerror(errno);
+}
+
+/// Refuses a target in a folder that does not exist, and a target that exists and is not a
+/// regular file: the rename would replace a folder's name or a device node (as root,
+/// /dev/null itself) with the temporary file.
+void requireCreatableTarget(const std::filesystem::path& target) {
+  std::error_code error;
+  const std::filesystem::file_status status = std::filesystem::status(target, error);
+  const std::filesystem::path folder = target.parent_path().empty() ? "." : target.parent_path();
+  if (!std::filesystem::is_directory(folder, error))
+    throw CannotCreateError("cannot create '" + target.string() + "': there is no folder '" +
+                            folder.string() + "'; create it or give a path in an existing folder");
+  if (!std::filesystem::exists(status) || std::filesystem::is_regular_file(status)) return;
+  if (std::filesystem::is_directory(status))
+    throw CannotCreateError("cannot create '" + target.string() +
+                            "': it is a folder; give the path of a file in it");
+  throw CannotCreateError("cannot create '" + target.string() +
+                          "': it is not a regular file (a device, pipe or socket); output is "
+                          "written into a temporary file and renamed over the target, so give "
+                          "the path of a regular file");
 }
 }  // namespace
 
@@ -39,11 +60,12 @@ std::string makeTemporaryIn(const std::string& directory, const std::string& ste
     }
     if (errno != EEXIST) break;
   }
-  throw ioError("cannot create a temporary file in", dir.string());
+  throw CannotCreateError(systemError("cannot create a temporary file in", dir.string()));
 }
 
 std::string makeTemporaryBeside(const std::string& path) {
   const std::filesystem::path target(path);
+  requireCreatableTarget(target);
   try {
     // Appended piece by piece: GCC 12 at -O3 warns falsely (-Wstringop-overflow or
     // -Warray-bounds) on "." + name + ".tmp" inlined here.
@@ -51,29 +73,54 @@ std::string makeTemporaryBeside(const std::string& path) {
     name += target.filename().string();
     name += ".tmp";
     return makeTemporaryIn(target.parent_path().string(), name);
-  } catch (const std::runtime_error& e) {
-    throw std::runtime_error("cannot write '" + path + "': " + e.what());
+  } catch (const CannotCreateError& e) {
+    throw CannotCreateError("cannot create '" + path + "': " + e.what());
   }
 }
 
 void commitTemporary(const std::string& temporaryPath, const std::string& path) {
   if (std::rename(temporaryPath.c_str(), path.c_str()) != 0) {
-    const std::runtime_error error = ioError("cannot write", path);
+    const WriteError error(systemError("cannot write", path));
     std::remove(temporaryPath.c_str());
     throw error;
   }
 }
 
+AtomicFileWriter::AtomicFileWriter(std::string path)
+    : path_(std::move(path)), temporary_(makeTemporaryBeside(path_)) {
+  file_ = std::fopen(temporary_.path().c_str(), "wb");
+  if (file_ == nullptr)
+    throw CannotCreateError(systemError("cannot create", path_));
+}
+
+AtomicFileWriter::~AtomicFileWriter() {
+  if (file_ != nullptr) std::fclose(file_);
+}
+
+void AtomicFileWriter::write(std::string_view data) {
+  if (file_ == nullptr) throw WriteError("cannot write '" + path_ + "': already committed");
+  if (std::fwrite(data.data(), 1, data.size(), file_) != data.size())
+    throw WriteError(systemError("cannot write", path_));
+}
+
+void AtomicFileWriter::commit() {
+  if (file_ == nullptr) throw WriteError("cannot write '" + path_ + "': already committed");
+  int error = 0;
+  if (std::fflush(file_) != 0 || ::fsync(fileno(file_)) != 0) error = errno;
+  if (std::fclose(file_) != 0 && error == 0) error = errno;
+  file_ = nullptr;
+  if (error != 0) {
+    errno = error;
+    throw WriteError(systemError("cannot write", path_));
+  }
+  commitTemporary(temporary_.path(), path_);
+  temporary_.release();
+}
+
 void writeFileAtomically(const std::string& path, const std::string& content) {
-  TemporaryFile temporary(makeTemporaryBeside(path));
-  std::FILE* file = std::fopen(temporary.path().c_str(), "wb");
-  bool ok = file != nullptr;
-  if (ok) ok = std::fwrite(content.data(), 1, content.size(), file) == content.size();
-  if (file != nullptr) ok = (std::fflush(file) == 0) && ok && (::fsync(fileno(file)) == 0);
-  if (file != nullptr) ok = (std::fclose(file) == 0) && ok;
-  if (!ok) throw ioError("cannot write", path);
-  commitTemporary(temporary.path(), path);
-  temporary.release();
+  AtomicFileWriter writer(path);
+  writer.write(content);
+  writer.commit();
 }
 
 }  // namespace boxsim

@@ -11,6 +11,12 @@ Recorder::Recorder(const World& world, std::map<std::string, std::string> meta) 
         {world.names[i], world.bodies[i].halfExtents, world.bodies[i].immovable});
 }
 
+Recorder::Recorder(const World& world, std::map<std::string, std::string> meta, FrameSink& sink)
+    : Recorder(world, std::move(meta)) {
+  sink_ = &sink;
+  sink_->begin(trajectory_.meta, trajectory_.bodies);
+}
+
 void Recorder::capture(const World& world, double t, const StepStats& stats) {
   TrajectoryFrame f;
   f.t = t;
@@ -25,7 +31,10 @@ void Recorder::capture(const World& world, double t, const StepStats& stats) {
     f.x.push_back(b.s.x);
     f.q.push_back(b.s.q);
   }
-  trajectory_.frames.push_back(std::move(f));
+  if (sink_ != nullptr)
+    sink_->push(f);
+  else
+    trajectory_.frames.push_back(std::move(f));
 }
 
 }  // namespace boxsim

@@ -1,6 +1,7 @@
 #include "boxsim/io/simulate.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -22,19 +23,60 @@ std::map<std::string, std::string> runParameters(const Stepper& stepper, const W
   return meta;
 }
 
-long checkedStepCount(double dt, double duration, std::size_t bodyCount) {
+namespace {
+
+/// Up to 12 significant digits: what a user types back (within kWholeStepTolerance).
+std::string roundedText(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.12g", value);
+  return buffer;
+}
+
+/// The refusal of a duration that is `steps` (not whole) steps of dt, with the nearest
+/// durations that are whole steps and time steps that divide the duration.
+std::invalid_argument notWholeSteps(double dt, double duration, double steps) {
+  const double below = std::floor(steps);
+  const double above = std::ceil(steps);
+  std::string durations = roundedText(above * dt) + " s";
+  std::string timeSteps = roundedText(duration / above) + " s";
+  if (below >= 1.0) {
+    durations = roundedText(below * dt) + " s or " + durations;
+    timeSteps += " or " + roundedText(duration / below) + " s";
+  }
+  return std::invalid_argument(
+      "the duration " + shortestText(duration) + " s is " + roundedText(steps) +
+      " steps of dt = " + shortestText(dt) +
+      " s; a run takes whole steps, so that it ends at the duration asked for: use a duration "
+      "of " + durations + ", or a dt that divides " + shortestText(duration) + " s, such as " +
+      timeSteps);
+}
+
+}  // namespace
+
+long checkedStepCount(double dt, double duration) {
   if (!std::isfinite(dt) || dt <= 0.0)
     throw std::invalid_argument("the time step dt must be a finite number > 0 s");
   if (!std::isfinite(duration) || duration < 0.0)
     throw std::invalid_argument("the duration must be a finite number >= 0 s");
-  const double steps = std::round(duration / dt);
-  if (steps > kMaxSteps || steps * static_cast<double>(bodyCount) > kMaxRecordedPoses)
-    throw std::invalid_argument(
-        "duration / dt asks for " + shortestText(steps) + " steps of " +
-        std::to_string(bodyCount) + " bodies, more than the limit of " + shortestText(kMaxSteps) +
-        " steps and " + shortestText(kMaxRecordedPoses) +
-        " recorded poses; use a larger dt or a shorter duration");
+  const double exact = duration / dt;
+  const double steps = std::round(exact);
+  if (steps > kMaxSteps)
+    throw std::invalid_argument("duration / dt asks for " + shortestText(steps) +
+                                " steps, more than the limit of " + shortestText(kMaxSteps) +
+                                "; use a larger dt or a shorter duration");
+  if (std::abs(exact - steps) > kWholeStepTolerance * steps)
+    throw notWholeSteps(dt, duration, exact);
   return static_cast<long>(steps);
+}
+
+void checkRecordedPoses(long steps, std::size_t bodyCount) {
+  const double poses = static_cast<double>(steps) * static_cast<double>(bodyCount);
+  if (poses > kMaxRecordedPoses)
+    throw std::invalid_argument(
+        std::to_string(steps) + " steps of " + std::to_string(bodyCount) +
+        " bodies are more than the limit of " + shortestText(kMaxRecordedPoses) +
+        " poses kept in memory; use a larger dt or a shorter duration, or pass the frames to a "
+        "FrameSink");
 }
 
 namespace {
@@ -51,7 +93,8 @@ void requireFinite(const World& world, long step) {
 
 SimulateSummary simulate(World& world, Stepper& stepper, const SimulateOptions& options,
                          Recorder& recorder) {
-  const long steps = checkedStepCount(options.dt, options.duration, world.bodies.size());
+  const long steps = checkedStepCount(options.dt, options.duration);
+  if (recorder.keepsFrames()) checkRecordedPoses(steps, world.bodies.size());
   SimulateSummary summary;
   world.applyLaunches(0.0);
   recorder.capture(world, 0.0);

@@ -20,12 +20,21 @@
 #pragma once
 
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "boxsim/core/math.hpp"
 
 namespace boxsim {
+
+class FrameSink;
+
+/// A trajectory file that does not follow the format above. what() reads "FILE:LINE: problem".
+class TrajectoryFormatError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 /// A body as a trajectory file describes it.
 struct TrajectoryBody {
@@ -55,16 +64,34 @@ struct Trajectory {
   std::vector<TrajectoryFrame> frames;  ///< in time order
 };
 
-/// Formats a trajectory in the file format above (full double precision, round-trippable).
+/// Formats a trajectory in the file format above (full double precision, round-trippable):
+/// formatTrajectoryHeader() followed by appendTrajectoryRow() for every frame.
 /// Throws std::invalid_argument when a body name is empty or holds white space.
 std::string formatTrajectory(const Trajectory& trajectory);
+
+/// The header of the file format above for a run with parameters `meta` and bodies `bodies`:
+/// every line up to and including the `# columns:` line.
+/// Throws std::invalid_argument when a body name is empty or holds white space.
+std::string formatTrajectoryHeader(const std::map<std::string, std::string>& meta,
+                                   const std::vector<TrajectoryBody>& bodies);
+
+/// Appends the row of one frame (its newline included) to `out`.
+void appendTrajectoryRow(std::string& out, const TrajectoryFrame& frame);
 
 /// Writes formatTrajectory() to path, whole or not at all (temporary file, then rename).
 /// Throws std::runtime_error naming the path when it cannot.
 void writeTrajectory(const std::string& path, const Trajectory& trajectory);
 
-/// Reads a trajectory file. Throws std::runtime_error naming the file and line on a malformed
-/// file (missing header, wrong column count, non-numeric field).
+/// Reads a trajectory file whole (readTrajectory() into a TrajectoryCollector).
+/// Throws TrajectoryFormatError naming the file and line on a malformed file (missing header,
+/// wrong column count, non-numeric field, a header line after the first frame), and
+/// std::runtime_error when the file cannot be opened.
 Trajectory readTrajectory(const std::string& path);
+
+/// Reads a trajectory file frame by frame into `sink`, holding one frame at a time:
+/// FrameSink::begin() with the header lines when the first frame (or the end of the file) is
+/// reached, FrameSink::push() for every frame, FrameSink::finish() at the end.
+/// Throws as readTrajectory(const std::string&) does, and whatever the sink throws.
+void readTrajectory(const std::string& path, FrameSink& sink);
 
 }  // namespace boxsim

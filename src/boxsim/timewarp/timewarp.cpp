@@ -349,6 +349,12 @@ std::map<std::string, std::string> TimewarpStepper::parameters() const {
           {"fix_interpenetration", params_.fixInterpenetration ? "on" : "off"}};
 }
 
+std::string TimewarpStepper::workLimit() const {
+  return "at most " + std::to_string(params_.maxEventsPerStep) +
+         " collisions a frame (max_events_per_step); collisions crowding together as bodies "
+         "come to rest reach it (thesis §4.3)";
+}
+
 StepStats TimewarpStepper::step(World& world, double dt) {
   events_.clear();
   Frame frame(world, dt, params_);

@@ -76,6 +76,8 @@ class TimewarpStepper final : public Stepper {
   explicit TimewarpStepper(const TimewarpParams& params = {});
   std::string name() const override { return timewarpMethodName(params_.variant); }
   std::map<std::string, std::string> parameters() const override;
+  /// At most TimewarpParams::maxEventsPerStep collisions a frame, in words.
+  std::string workLimit() const override;
   /// One frame of dt s: \alg{A.1} SIMPLESYNCTIMEWARP(t, dt, resolution) or
   /// SAFERSYNCTIMEWARP, or the swept variant. StepStats counts events, bisection steps,
   /// body integrations and body roll-backs.
