@@ -264,6 +264,23 @@ bool ContactGathering::contactOf(const World& world, int i, int j, ContactManifo
 
 std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, GravityMode predict,
                                                      double margin) {
+  std::vector<ImpulseContact>& contacts = gather(world, dt, predict, margin);
+  if (!params_.commonLeverPoint) return contacts;
+  // ImpulseParams::commonLeverPoint: both impulses act at one point, the midpoint of the
+  // material points x + r' the found lever arms name at the current poses, so ±J exert no net
+  // torque about any fixed point.
+  for (ImpulseContact& c : contacts) {
+    const Vec3& xa = world.bodies[c.a].s.x;
+    const Vec3& xb = world.bodies[c.b].s.x;
+    const Vec3 q = 0.5 * ((xa + c.ra) + (xb + c.rb));
+    c.ra = q - xa;
+    c.rb = q - xb;
+  }
+  return contacts;
+}
+
+std::vector<ImpulseContact>& ContactGathering::gather(World& world, double dt, GravityMode predict,
+                                                      double margin) {
   const Vec3 gravityStep =
       predict == GravityMode::VelocityPlusGravity ? Vec3(dt * world.gravity) : Vec3(Vec3::Zero());
   if (params_.gathering == ContactGatheringMode::EveryPass) {

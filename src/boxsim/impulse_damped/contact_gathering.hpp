@@ -147,7 +147,8 @@ class ContactGathering {
   /// for movable bodies under VelocityPlusGravity), every pair closer than `margin` m, one
   /// ImpulseContact per pair in a fixed order, with the lever arms of its material points where
   /// the bodies stand: every body is back at its pose before the call when this returns (the
-  /// file comment, "Where COLLIDE acts"). The result stays valid until the next call.
+  /// file comment, "Where COLLIDE acts"; with ImpulseParams::commonLeverPoint, from the current
+  /// centres to one point, the midpoint of the two). The result stays valid until the next call.
   std::vector<ImpulseContact>& begin(World& world, double dt, GravityMode predict,
                                      double margin);
   /// Ends a pass. \alg{A.2} L6, revertToOriginalPositions, already happened in begin().
@@ -194,6 +195,9 @@ class ContactGathering {
     bool remembered;  ///< its face was handed to the normal model since it last was fast
   };
 
+  /// begin() without ImpulseParams::commonLeverPoint: the contacts with the lever arms of the
+  /// poses they were found at.
+  std::vector<ImpulseContact>& gather(World& world, double dt, GravityMode predict, double margin);
   /// m: how far a body moves in a pass with its current velocities, Δt (|v'| + |ω| ρ).
   double reach(const RigidBody& body, const Vec3& gravityStep, double dt) const;
   /// Whether the cache was built for bodies of the same mobility as the world's now.
