@@ -50,13 +50,13 @@ std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueO
     if (options.integrator) params.integrator = *options.integrator;
     return std::make_unique<TimewarpStepper>(params);
   }
-  refuse(options.integrator.has_value(), "integrator");
   if (method == "impulse") {
     refuse(options.sleep.has_value(), "sleep");
     refuse(options.plausibilitySeed.has_value(), "plausibility seed");
     ImpulseStepperParams params;
     if (options.contactNormal) params.impulse.normalModel = *options.contactNormal;
     if (options.contactGathering) params.impulse.gathering = *options.contactGathering;
+    if (options.integrator) params.impulse.integrator = *options.integrator;
     return std::make_unique<ImpulseStepper>(params);
   }
   if (method == "damped") {
@@ -64,6 +64,7 @@ std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueO
     if (options.contactNormal) params.impulse.normalModel = *options.contactNormal;
     if (options.contactGathering) params.impulse.gathering = *options.contactGathering;
     if (options.sleep) params.sleep.enabled = *options.sleep;
+    if (options.integrator) params.impulse.integrator = *options.integrator;
     if (options.plausibilitySeed) {
       params.plausibility.enabled = true;
       params.plausibility.seed = *options.plausibilitySeed;

@@ -121,8 +121,9 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("--method,-m", args->method, "Technique: " + methods)->capture_default_str();
   cmd->add_option("--integrator", args->integrator,
                   "Integrator between collisions: forward_euler, semi_implicit_euler, "
-                  "runge_kutta_4 "
-                  "(basic_colliding, analytic and the timewarps; default: semi_implicit_euler)");
+                  "runge_kutta_4, split_rotation (basic_colliding, analytic and the timewarps); "
+                  "of the last position update: semi_implicit_euler, split_rotation (impulse, "
+                  "damped). Default: semi_implicit_euler");
   cmd->add_option("--contact-normal", args->contactNormal,
                   "Contact normal model of impulse and damped: separating_axis, "
                   "previous_closest_face (default), signed_distance")

@@ -29,20 +29,26 @@ ContactGatheringMode parseContactGathering(const std::string& name) {
                               "'; use every_pass or once_per_step");
 }
 
-void movePredicted(RigidBody& body, double dt, const Vec3& extraVelocity) {
+void movePredicted(RigidBody& body, double dt, const Vec3& extraVelocity,
+                   Integrator integrator) {
   body.s.x += dt * (body.v + extraVelocity);
+  if (integrator == Integrator::SplitRotation) {
+    splitRotation(body, dt);
+    return;
+  }
   const Quat w(0.0, body.omega.x(), body.omega.y(), body.omega.z());
   body.s.q.coeffs() += (0.5 * dt) * (w * body.s.q).coeffs();
   body.s.q.normalize();
   body.updateDerived();
 }
 
-SavedPoses predictPositions(World& world, double dt, const Vec3& extraVelocity) {
+SavedPoses predictPositions(World& world, double dt, const Vec3& extraVelocity,
+                            Integrator integrator) {
   SavedPoses saved;
   saved.reserve(world.bodies.size());
   for (RigidBody& body : world.bodies) {
     saved.push_back({body.s.x, body.s.q, body.R, body.Iinv, body.immovable});
-    if (!body.immovable) movePredicted(body, dt, extraVelocity);
+    if (!body.immovable) movePredicted(body, dt, extraVelocity, integrator);
   }
   return saved;
 }
@@ -75,6 +81,11 @@ ContactGathering::ContactGathering(const ImpulseParams& params)
     throw std::invalid_argument(
         "contact gathering: the exact reach must be a finite number >= 0 and the widening a "
         "finite number >= the exact reach (units of l)");
+  if (params.integrator != Integrator::SemiImplicitEuler &&
+      params.integrator != Integrator::SplitRotation)
+    throw std::invalid_argument("the impulse-based step integrates with semi_implicit_euler or "
+                                "split_rotation (its velocities come before its positions), not " +
+                                integratorName(params.integrator));
 }
 
 double ContactGathering::reach(const RigidBody& body, const Vec3& gravityStep, double dt) const {

@@ -120,12 +120,15 @@ struct SavedPose {
 using SavedPoses = std::vector<SavedPose>;
 
 /// integrateObjectPositions of \alg{A.2} for one movable body: x += Δt (v + extra), q turned by
-/// Δt ω (one explicit quaternion step, renormalised); R, I⁻¹, v and ω follow.
-void movePredicted(RigidBody& body, double dt, const Vec3& extraVelocity);
+/// Δt ω (one explicit quaternion step, renormalised; with Integrator::SplitRotation, by
+/// splitRotation instead); R, I⁻¹, v and ω follow. Only those two integrators are accepted.
+void movePredicted(RigidBody& body, double dt, const Vec3& extraVelocity,
+                   Integrator integrator = Integrator::SemiImplicitEuler);
 
 /// integrateObjectPositions of \alg{A.2}: moves every movable body to x + Δt (v + extra) and
-/// turns it by Δt ω (one explicit quaternion step, renormalised); returns the poses before.
-SavedPoses predictPositions(World& world, double dt, const Vec3& extraVelocity);
+/// turns it as movePredicted does with `integrator`; returns the poses before.
+SavedPoses predictPositions(World& world, double dt, const Vec3& extraVelocity,
+                            Integrator integrator = Integrator::SemiImplicitEuler);
 
 /// Puts one body back to a saved pose, reusing the saved R and Iinv unless the body's
 /// mobility changed since (then everything derived is recomputed); v and ω are recomputed.

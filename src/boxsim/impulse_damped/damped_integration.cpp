@@ -107,9 +107,9 @@ StepStats DampedIntegrationStepper::step(World& world, double dt) {
   integrateVelocities(world, dt);
   // L4: DAMPENOBJECTS (its L22 integrates the positions).
   if (params_.damp) {
-    dampenObjects(world, dt, touched, params_.damping);
+    dampenObjects(world, dt, touched, params_.damping, params_.impulse.integrator);
   } else {
-    predictPositions(world, dt, Vec3::Zero());
+    predictPositions(world, dt, Vec3::Zero(), params_.impulse.integrator);
   }
   const double restingMargin = restingContactMargin(world, margin, dt);
   // L5: FIXCONTACTCONSTRAINTS; sleeping bodies still stand in as immovable, so none moves.

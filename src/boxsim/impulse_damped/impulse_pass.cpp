@@ -115,7 +115,8 @@ std::map<std::string, std::string> impulseParameters(const ImpulseParams& params
           {"contact_gathering", contactGatheringName(params.gathering)},
           {"slow_widening_per_l", shortestText(params.slowWidening)},
           {"exact_reach_per_l", shortestText(params.exactReach)},
-          {"common_lever_point", params.commonLeverPoint ? "on" : "off"}};
+          {"common_lever_point", params.commonLeverPoint ? "on" : "off"},
+          {"integrator", integratorName(params.integrator)}};
 }
 
 double smallestHalfExtent(const World& world) {
