@@ -22,14 +22,21 @@ Vec3 freeFlight(Integrator integrator, double dt, int n, const Vec3& x0, const V
   return world.bodies[0].s.x;
 }
 
+// A world without gravity holding one box of the given half extents (m) and mass (kg)
+// spinning at omega (rad/s).
+World spinnerWorld(const Vec3& halfExtents, double mass, const Vec3& omega) {
+  World world;
+  world.gravity = Vec3::Zero();
+  RigidBody b = RigidBody::box(halfExtents, mass);
+  b.setAngularVelocity(omega);
+  world.add(b, "spinner");
+  return world;
+}
+
 // Relative kinetic-energy error after time T of a torque-free box spinning about a tilted axis.
 double spinEnergyError(double dt, double T, Vec3* Lend = nullptr, Vec3* L0out = nullptr,
                        Integrator integrator = Integrator::ForwardEuler) {
-  World world;
-  world.gravity = Vec3::Zero();
-  RigidBody b = RigidBody::box(Vec3(0.5, 0.3, 0.1), 1.5);
-  b.setAngularVelocity(Vec3(0.3, 4.0, 0.8));
-  world.add(b, "spinner");
+  World world = spinnerWorld(Vec3(0.5, 0.3, 0.1), 1.5, Vec3(0.3, 4.0, 0.8));
   const double e0 = world.kineticEnergy();
   const Vec3 L0 = world.bodies[0].s.L;
   const int n = static_cast<int>(std::lround(T / dt));
@@ -181,11 +188,7 @@ namespace {
 /// intermediate axis (y), for 10 s at step dt with no gravity: the largest relative change of
 /// its kinetic energy over the run, and whether L stayed bitwise the same.
 double intermediateAxisEnergyChange(Integrator integrator, double dt, bool& sameL) {
-  World world;
-  world.gravity = Vec3::Zero();
-  RigidBody b = RigidBody::box(Vec3(0.25, 0.1, 0.05), 1.0);
-  b.setAngularVelocity(Vec3(1.0, 5.0, 0.1));
-  world.add(b, "spinner");
+  World world = spinnerWorld(Vec3(0.25, 0.1, 0.05), 1.0, Vec3(1.0, 5.0, 0.1));
   const double e0 = world.kineticEnergy();
   const Vec3 L0 = world.bodies[0].s.L;
   double worst = 0.0;

@@ -263,8 +263,7 @@ Vec3 totalAngularMomentum(const World& world) {
 /// returns |ΔL| / |L| of the pair about the origin (|L| = 1 kg m²/s) and, through `hit`,
 /// whether B was struck.
 double glancingAngularMomentumChange(Stepper& stepper, double dt, bool& hit) {
-  World world;
-  world.gravity = Vec3::Zero();
+  World world = boxsim::testing::spaceWorld();
   RigidBody a = RigidBody::box(Vec3::Constant(0.5), 1.0);
   a.s.x = Vec3(0.0, -0.25, 0.0);
   a.setVelocity(Vec3(4.0, 3.0, 0.0));
