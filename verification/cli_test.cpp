@@ -187,6 +187,12 @@ TEST_CASE("Technique options reach the stepper and its header, and options a met
   const Result split = runBoxsim(kDir, "run " + die + " --method damped --duration 0.1 --integrator split_rotation --out " + out);
   REQUIRE(split.status == 0);
   CHECK(boxsim::readTrajectory(out).meta.at("integrator") == "split_rotation");
+  const Result ccd = runBoxsim(kDir, "run " + die + " --method damped --duration 0.1 --continuous-collision on --out " + out);
+  REQUIRE(ccd.status == 0);
+  CHECK(boxsim::readTrajectory(out).meta.at("continuous_collision") == "on");
+  const Result noCcd = runBoxsim(kDir, "run " + die + " --method impulse --continuous-collision on --out " + refused);
+  CHECK(noCcd.status != 0);
+  CHECK_THAT(noCcd.stderrText, Contains("takes no continuous collision option"));
 }
 
 TEST_CASE("boxsim render --colour colours a named body, and a bad name or colour exits non-zero",

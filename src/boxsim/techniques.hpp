@@ -27,6 +27,9 @@ struct TechniqueOptions {
   std::optional<ContactGatheringMode> contactGathering;
   /// Computational stability (sleeping, \thesis{§4.5}) of damped integration; empty: default (on).
   std::optional<bool> sleep;
+  /// Continuous collision detection for fast bodies of damped integration
+  /// (continuous_collision.hpp); empty: default (off).
+  std::optional<bool> continuousCollision;
   /// Visual plausibility (\thesis{§4.2}) of damped integration: perturbation on with this seed;
   /// empty: off.
   std::optional<unsigned long> plausibilitySeed;

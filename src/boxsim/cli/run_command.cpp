@@ -21,6 +21,7 @@ struct RunArgs {
   std::string contactNormal;  // empty: the method's default
   std::string contactGathering;  // empty: the method's default
   std::string sleep;          // "on", "off" or empty (the method's default)
+  std::string continuousCollision;  // "on", "off" or empty (the method's default)
   std::string broadPhase;     // empty: the scene's choice
   std::optional<unsigned long> plausibilitySeed;
   double dt = 1.0 / 60.0;
@@ -74,6 +75,8 @@ int run(const RunArgs& args) {
   if (!args.contactGathering.empty())
     options.contactGathering = parseContactGathering(args.contactGathering);
   if (!args.sleep.empty()) options.sleep = args.sleep == "on";
+  if (!args.continuousCollision.empty())
+    options.continuousCollision = args.continuousCollision == "on";
   options.plausibilitySeed = args.plausibilitySeed;
   // Build the stepper before loading the scene so an unknown method fails fast.
   std::unique_ptr<Stepper> stepper = makeStepper(args.method, options);
@@ -134,6 +137,9 @@ void addRunCommand(CLI::App& app) {
                   "(Alg. A.2 as written)")
       ->check(CLI::IsMember({"once_per_step", "every_pass"}));
   cmd->add_option("--sleep", args->sleep, "Sleeping of bodies at rest (damped): on (default), off")
+      ->check(CLI::IsMember({"on", "off"}));
+  cmd->add_option("--continuous-collision", args->continuousCollision,
+                  "Continuous collision detection for fast bodies (damped): on, off (default)")
       ->check(CLI::IsMember({"on", "off"}));
   cmd->add_option("--broad-phase", args->broadPhase,
                   "How candidate pairs are found, overriding the scene's \"broad_phase\": "
