@@ -32,13 +32,20 @@ int applySimultaneousImpulses(World& world, const PairCollision& collision,
   VecX unused;
   contactMatrix(world, contacts, A, unused);
   const LcpResult lcp = solveContactLcp(A, bias, params);
-  // The impulses j n at the points, summed per body: the wrenches of "forces" j.
-  const std::vector<Wrench> impulses = contactWrenches(world, contacts, lcp.f);
+  // The impulses j_i n at the points: +j_i n on b, -j_i n on a, both at p_i.
+  Vec3 impulse = Vec3::Zero(), momentA = Vec3::Zero(), momentB = Vec3::Zero();
+  for (int i = 0; i < n; ++i) {
+    const Vec3 J = lcp.f[i] * collision.normal;
+    impulse += J;
+    momentA += (collision.points[i] - a.s.x).cross(J);
+    momentB += (collision.points[i] - b.s.x).cross(J);
+  }
   for (const int k : {collision.a, collision.b}) {
     RigidBody& body = world.bodies[k];
     if (body.immovable) continue;
-    body.s.P += impulses[k].force;
-    body.s.L += impulses[k].torque;
+    const double sign = k == collision.b ? 1.0 : -1.0;
+    body.s.P += sign * impulse;
+    body.s.L += sign * (k == collision.b ? momentB : momentA);
     body.updateVelocities();
   }
   return static_cast<int>((lcp.f.array() > 0.0).count());
