@@ -288,8 +288,20 @@ TEST_CASE("Technique options reach the stepper and its header, and options a met
   CHECK_THAT(basic.stderrText, Contains("takes no sleep option"));
   const Result impulse = runBoxsim(kDir, "run " + die + " --method impulse --integrator forward_euler --out " + refused);
   CHECK(impulse.status != 0);
-  CHECK_THAT(impulse.stderrText, Contains("takes no integrator option"));
+  CHECK_THAT(impulse.stderrText, Contains("semi_implicit_euler or split_rotation"));
+  const Result unknown = runBoxsim(kDir, "run " + die + " --method damped --integrator leapfrog --out " + refused);
+  CHECK(unknown.status != 0);
+  CHECK_THAT(unknown.stderrText, Contains("unknown integrator 'leapfrog'"));
   CHECK_FALSE(fs::exists(refused));
+  const Result split = runBoxsim(kDir, "run " + die + " --method damped --duration 0.1 --integrator split_rotation --out " + out);
+  REQUIRE(split.status == 0);
+  CHECK(boxsim::readTrajectory(out).meta.at("integrator") == "split_rotation");
+  const Result ccd = runBoxsim(kDir, "run " + die + " --method damped --duration 0.1 --continuous-collision on --out " + out);
+  REQUIRE(ccd.status == 0);
+  CHECK(boxsim::readTrajectory(out).meta.at("continuous_collision") == "on");
+  const Result noCcd = runBoxsim(kDir, "run " + die + " --method impulse --continuous-collision on --out " + refused);
+  CHECK(noCcd.status != 0);
+  CHECK_THAT(noCcd.stderrText, Contains("takes no continuous collision option"));
 }
 
 TEST_CASE("boxsim render --colour colours a named body, and a bad name or colour exits non-zero",

@@ -24,6 +24,7 @@ std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueO
     refuse(options.contactNormal.has_value(), "contact normal");
     refuse(options.contactGathering.has_value(), "contact gathering");
     refuse(options.sleep.has_value(), "sleep");
+    refuse(options.continuousCollision.has_value(), "continuous collision");
     refuse(options.plausibilitySeed.has_value(), "plausibility seed");
     BasicCollidingParams params;
     if (options.integrator) params.integrator = *options.integrator;
@@ -33,6 +34,7 @@ std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueO
     refuse(options.contactNormal.has_value(), "contact normal");
     refuse(options.contactGathering.has_value(), "contact gathering");
     refuse(options.sleep.has_value(), "sleep");
+    refuse(options.continuousCollision.has_value(), "continuous collision");
     refuse(options.plausibilitySeed.has_value(), "plausibility seed");
     AnalyticParams params;
     if (options.integrator) params.loop.integrator = *options.integrator;
@@ -44,19 +46,21 @@ std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueO
     refuse(options.contactNormal.has_value(), "contact normal");
     refuse(options.contactGathering.has_value(), "contact gathering");
     refuse(options.sleep.has_value(), "sleep");
+    refuse(options.continuousCollision.has_value(), "continuous collision");
     refuse(options.plausibilitySeed.has_value(), "plausibility seed");
     TimewarpParams params;
     params.variant = variant;
     if (options.integrator) params.integrator = *options.integrator;
     return std::make_unique<TimewarpStepper>(params);
   }
-  refuse(options.integrator.has_value(), "integrator");
   if (method == "impulse") {
     refuse(options.sleep.has_value(), "sleep");
+    refuse(options.continuousCollision.has_value(), "continuous collision");
     refuse(options.plausibilitySeed.has_value(), "plausibility seed");
     ImpulseStepperParams params;
     if (options.contactNormal) params.impulse.normalModel = *options.contactNormal;
     if (options.contactGathering) params.impulse.gathering = *options.contactGathering;
+    if (options.integrator) params.impulse.integrator = *options.integrator;
     return std::make_unique<ImpulseStepper>(params);
   }
   if (method == "damped") {
@@ -64,6 +68,8 @@ std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueO
     if (options.contactNormal) params.impulse.normalModel = *options.contactNormal;
     if (options.contactGathering) params.impulse.gathering = *options.contactGathering;
     if (options.sleep) params.sleep.enabled = *options.sleep;
+    if (options.continuousCollision) params.continuousCollision.enabled = *options.continuousCollision;
+    if (options.integrator) params.impulse.integrator = *options.integrator;
     if (options.plausibilitySeed) {
       params.plausibility.enabled = true;
       params.plausibility.seed = *options.plausibilitySeed;

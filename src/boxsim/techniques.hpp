@@ -16,8 +16,9 @@ namespace boxsim {
 
 /// Options shared by every technique that a command line can set.
 struct TechniqueOptions {
-  /// Integrator between collisions (basic_colliding only; the impulse-based techniques
-  /// integrate semi-implicitly by construction); empty: the technique's own default.
+  /// Integrator between collisions (basic_colliding, analytic, the timewarps) or of the last
+  /// position update (impulse, damped: semi_implicit_euler or split_rotation only, refused
+  /// otherwise); empty: the technique's own default.
   std::optional<Integrator> integrator;
   /// Contact normal model of the impulse-based techniques (\thesis{§3.3.2}); empty: default.
   std::optional<ContactNormalModel> contactNormal;
@@ -26,6 +27,9 @@ struct TechniqueOptions {
   std::optional<ContactGatheringMode> contactGathering;
   /// Computational stability (sleeping, \thesis{§4.5}) of damped integration; empty: default (on).
   std::optional<bool> sleep;
+  /// Continuous collision detection for fast bodies of damped integration
+  /// (continuous_collision.hpp); empty: default (off).
+  std::optional<bool> continuousCollision;
   /// Visual plausibility (\thesis{§4.2}) of damped integration: perturbation on with this seed;
   /// empty: off.
   std::optional<unsigned long> plausibilitySeed;

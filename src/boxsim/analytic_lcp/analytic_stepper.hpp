@@ -1,6 +1,7 @@
 /// \file
 /// The analytic method (\thesis{§2.6.1}, \thesis{§3.3.1}, \thesis{§4.3}): resting contact
-/// forces from Baraff's LCP, collisions by chronologically ordered Newtonian impulses.
+/// forces from Baraff's LCP, collisions by chronologically ordered Newtonian impulses, those of
+/// one collision's points applied at once (collision_impulses.hpp).
 ///
 /// Every integration interval starts by gathering the contacts closer than the margin whose
 /// points neither approach nor separate faster than `restingSpeed` (resting contacts,
@@ -27,6 +28,13 @@ inline BasicCollidingParams withDepthTolerance(double depthTolerance) {
   return params;
 }
 
+/// LcpParams with every default but epsilon, 1e-9 (m/s for the collision impulses' LCP).
+inline LcpParams impulseLcpParams() {
+  LcpParams params;
+  params.epsilon = 1e-9;
+  return params;
+}
+
 /// Parameters of the analytic method.
 struct AnalyticParams {
   /// The collision loop: integrator (semi-implicit Euler by default, the deviation
@@ -38,6 +46,10 @@ struct AnalyticParams {
   BasicCollidingParams loop = withDepthTolerance(1e-4);
   /// Baraff's solver with the thesis' ε and force clamp.
   LcpParams lcp;
+  /// The same solver for the impulses of a collision at all its points at once
+  /// (collision_impulses.hpp); its epsilon is in m/s: 1e-9 m/s, a millionth of the slowest
+  /// collision (restingSpeed) and far above the rounding of A j (~1e-15 m/s at a few m/s).
+  LcpParams collisionLcp = impulseLcpParams();
   /// m: pairs closer than this take part in the contact LCP (as BasicCollidingParams'
   /// contactMargin counts contacts). 1e-3 m.
   double contactMargin = 1e-3;

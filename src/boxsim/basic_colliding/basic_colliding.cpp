@@ -44,50 +44,54 @@ StepStats BasicCollidingStepper::step(World& world, double dt) {
 
 namespace {
 
-/// A pair intersecting at the first overlapping state of a search, with its one contact point
-/// (the manifold centroid, \alg{A.2 L7}) and normal.
-struct Collision {
-  int a, b;      ///< body indices
-  Vec3 point;    ///< m
-  Vec3 normal;   ///< unit, from a to b
-};
-
-std::vector<Collision> collisionsAt(const World& atImpact, double depthTolerance,
-                                    bool everyPoint) {
+/// The pairs intersecting at the first overlapping state of a search, each with its impulse
+/// points (the manifold centroid, or every manifold point) and normal; restitution not yet set.
+std::vector<PairCollision> collisionsAt(const World& atImpact, double depthTolerance,
+                                        bool everyPoint) {
   // One contact point per colliding pair (A.2 L7 findContactPoint): the centroid of the
   // pair's contact manifold, so a box landing flat gets a pure linear impulse. Or, for the
   // analytic method, every point of the manifold.
-  std::vector<Collision> collisions;
+  std::vector<PairCollision> collisions;
   for (const ContactManifold& m : findContacts(atImpact)) {
     if (m.depth <= depthTolerance) continue;
-    if (!everyPoint) {
-      collisions.push_back({m.a, m.b, m.centroid(), m.normal});
-      continue;
-    }
-    for (int k = 0; k < m.count; ++k) collisions.push_back({m.a, m.b, m.points[k].position, m.normal});
+    PairCollision c;
+    c.a = m.a;
+    c.b = m.b;
+    c.normal = m.normal;
+    if (everyPoint)
+      for (int k = 0; k < m.count; ++k) c.points.push_back(m.points[k].position);
+    else
+      c.points.push_back(m.centroid());
+    collisions.push_back(std::move(c));
   }
   return collisions;
 }
 
 /// Newtonian impulses for each collision whose bodies approach, in passes until none does; the
-/// restitution of each collision is fixed by its approach speed before the first pass.
-int resolveCollisions(World& world, const std::vector<Collision>& collisions, int maxPasses,
+/// restitution of each point is fixed by its approach speed before the first pass. A pair's
+/// points go to hooks.simultaneousImpulses when it is set, else its one point gets
+/// applyNewtonianImpulse.
+int resolveCollisions(World& world, std::vector<PairCollision>& collisions, int maxPasses,
                       const CollisionLoopHooks& hooks) {
-  std::vector<double> restitution(collisions.size(), world.restitution);
-  if (hooks.restitution)
-    for (std::size_t i = 0; i < collisions.size(); ++i) {
-      const Collision& c = collisions[i];
+  for (PairCollision& c : collisions) {
+    c.restitution.assign(c.points.size(), world.restitution);
+    if (!hooks.restitution) continue;
+    for (std::size_t k = 0; k < c.points.size(); ++k) {
       const double speed =
-          -relativeNormalVelocity(world.bodies[c.a], world.bodies[c.b], c.point, c.normal);
-      restitution[i] = hooks.restitution(world, speed);
+          -relativeNormalVelocity(world.bodies[c.a], world.bodies[c.b], c.points[k], c.normal);
+      c.restitution[k] = hooks.restitution(world, speed);
     }
+  }
   int impulses = 0;
   for (int pass = 0; pass < maxPasses; ++pass) {
     int applied = 0;
-    for (std::size_t i = 0; i < collisions.size(); ++i) {
-      const Collision& c = collisions[i];
-      const double j = applyNewtonianImpulse(world.bodies[c.a], world.bodies[c.b], c.point,
-                                             c.normal, restitution[i]);
+    for (const PairCollision& c : collisions) {
+      if (hooks.simultaneousImpulses) {
+        applied += hooks.simultaneousImpulses(world, c);
+        continue;
+      }
+      const double j = applyNewtonianImpulse(world.bodies[c.a], world.bodies[c.b], c.points[0],
+                                             c.normal, c.restitution[0]);
       if (j > 0.0) ++applied;
     }
     impulses += applied;
@@ -137,8 +141,8 @@ StepStats advanceColliding(World& world, double dt, const BasicCollidingParams& 
     World atImpact = world;
     atImpact.restoreState(start);
     integrateWorld(atImpact, toi.tIntersecting, params.integrator, held, extra);
-    const std::vector<Collision> collisions =
-        collisionsAt(atImpact, params.timeOfImpact.depthTolerance, hooks.everyPoint);
+    std::vector<PairCollision> collisions = collisionsAt(
+        atImpact, params.timeOfImpact.depthTolerance, static_cast<bool>(hooks.simultaneousImpulses));
     if (eventsSinceHold >= params.maxEventsPerStep) {
       // The collisions have crowded together (§4.3 chattering): instead of hanging, hold the
       // bodies colliding now where they are for the rest of the step and let the others go on.
@@ -148,7 +152,7 @@ StepStats advanceColliding(World& world, double dt, const BasicCollidingParams& 
       const long movingBefore = moving();
       held[toi.pair.first] = !world.bodies[toi.pair.first].immovable;
       held[toi.pair.second] = !world.bodies[toi.pair.second].immovable;
-      for (const Collision& c : collisions) {
+      for (const PairCollision& c : collisions) {
         held[c.a] = !world.bodies[c.a].immovable;
         held[c.b] = !world.bodies[c.b].immovable;
       }

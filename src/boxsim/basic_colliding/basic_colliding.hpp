@@ -46,8 +46,21 @@ struct BasicCollidingParams {
   double contactMargin = 1e-3;
 };
 
+/// One pair colliding at the first overlapping state of a time-of-impact search, with its
+/// impulse points.
+struct PairCollision {
+  int a = -1;                    ///< body index
+  int b = -1;                    ///< body index
+  Vec3 normal = Vec3::UnitY();   ///< unit, from a to b
+  /// m: the manifold centroid (\alg{A.2 L7}), or every manifold point
+  /// (CollisionLoopHooks::simultaneousImpulses).
+  std::vector<Vec3> points;
+  /// e of each point, fixed by its approach speed before the first impulse pass.
+  std::vector<double> restitution;
+};
+
 /// What the analytic method (\thesis{§3.3.1}) adds to the loop of the basic colliding
-/// technique; both members may be empty, which is the basic technique itself.
+/// technique; every member may be empty, which is the basic technique itself.
 struct CollisionLoopHooks {
   /// Forces besides gravity over the interval that starts at `world`'s current state, one
   /// wrench per body (or empty for none); held constant over the interval, as Euler
@@ -59,11 +72,12 @@ struct CollisionLoopHooks {
   /// Intersecting pairs that are no collision (resting contacts held by forces, whose small
   /// overlap the forces mend); empty: every intersecting pair is a collision.
   PairFilter notColliding;
-  /// false: one impulse point per colliding pair, the manifold centroid (\alg{A.2 L7}), as the
-  /// basic technique does. true: every manifold point is a collision point of its own (Baraff's
-  /// point contacts), so a rocking box whose corner hits while its centroid does not still
-  /// gets an impulse.
-  bool everyPoint = false;
+  /// Empty: one impulse point per colliding pair, the manifold centroid (\alg{A.2 L7}), as the
+  /// basic technique does. Set: every manifold point is a collision point (Baraff's point
+  /// contacts), so a rocking box whose corner hits while its centroid does not still gets an
+  /// impulse, and this applies the impulses of all of a pair's points at once, returning how
+  /// many were nonzero (the analytic method solves their velocity LCP).
+  std::function<int(World& world, const PairCollision& collision)> simultaneousImpulses;
 };
 
 /// One step of dt s of the \thesis{§2.1} loop, repeated until dt is covered: integrate every

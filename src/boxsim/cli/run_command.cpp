@@ -28,6 +28,7 @@ struct RunArgs {
   std::string contactNormal;  // empty: the method's default
   std::string contactGathering;  // empty: the method's default
   std::string sleep;          // "on", "off" or empty (the method's default)
+  std::string continuousCollision;  // "on", "off" or empty (the method's default)
   std::string broadPhase;     // empty: the scene's choice
   std::optional<unsigned long> plausibilitySeed;
   double dt = 1.0 / 60.0;
@@ -83,6 +84,8 @@ TechniqueOptions techniqueOptions(const RunArgs& args) {
   if (!args.contactGathering.empty())
     options.contactGathering = parseContactGathering(args.contactGathering);
   if (!args.sleep.empty()) options.sleep = args.sleep == "on";
+  if (!args.continuousCollision.empty())
+    options.continuousCollision = args.continuousCollision == "on";
   options.plausibilitySeed = args.plausibilitySeed;
   return options;
 }
@@ -156,8 +159,9 @@ void addRunCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--integrator", args->integrator,
                   "Integrator between collisions: forward_euler, semi_implicit_euler, "
-                  "runge_kutta_4 "
-                  "(basic_colliding, analytic and the timewarps; default: semi_implicit_euler)");
+                  "runge_kutta_4, split_rotation (basic_colliding, analytic and the timewarps); "
+                  "of the last position update: semi_implicit_euler, split_rotation (impulse, "
+                  "damped). Default: semi_implicit_euler");
   cmd->add_option("--contact-normal", args->contactNormal,
                   "Contact normal model of impulse and damped: separating_axis, "
                   "previous_closest_face (default), signed_distance")
@@ -168,6 +172,9 @@ void addRunCommand(CLI::App& app) {
                   "(Alg. A.2 as written)")
       ->check(CLI::IsMember({"once_per_step", "every_pass"}));
   cmd->add_option("--sleep", args->sleep, "Sleeping of bodies at rest (damped): on (default), off")
+      ->check(CLI::IsMember({"on", "off"}));
+  cmd->add_option("--continuous-collision", args->continuousCollision,
+                  "Continuous collision detection for fast bodies (damped): on, off (default)")
       ->check(CLI::IsMember({"on", "off"}));
   cmd->add_option("--broad-phase", args->broadPhase,
                   "How candidate pairs are found, overriding the scene's \"broad_phase\": "

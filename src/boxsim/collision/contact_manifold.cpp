@@ -55,8 +55,9 @@ namespace {
 constexpr std::uint32_t kEdgeEdgeContact = 1u << 13;
 
 /// Point depths closer than this fraction of the reference face's larger half extent are
-/// treated as equal when choosing the deepest point to keep (unitless). Rounding of a unit box
-/// is ~1e-16 m, and a real tilt of 1e-9 rad is not worth tracking.
+/// treated as equal when choosing the deepest point to keep, and incident vertices that close
+/// to a side plane of the reference face as lying on it (unitless). Rounding of a unit box is
+/// ~1e-16 m, and a real tilt of 1e-9 rad is not worth tracking.
 constexpr double kDepthTieFraction = 1e-9;
 
 /// A vertex of the clipped polygon, with the two lines (incident edge or reference side plane,
@@ -77,18 +78,24 @@ struct ClipPolygon {
 };
 
 /// Sutherland-Hodgman step: keeps the part of `in` where n . p <= offset, written to `out`
-/// (not `in`). A crossing is made only for strictly opposite signs, so a vertex on the plane
-/// is never duplicated. Returns false, leaving `out` untouched, when every vertex is already
-/// inside: the clipped polygon would be `in` itself, vertex for vertex, so the caller keeps
-/// using `in` and no copy is made (the usual case for most side planes of a resting contact).
+/// (not `in`). A vertex within `onPlane` (m) of the plane counts as on it: kept, and never
+/// the end of a crossing. A crossing is made only for strictly opposite signs, so a vertex on
+/// the plane is never duplicated. Returns false, leaving `out` untouched, when every vertex is
+/// already inside: the clipped polygon would be `in` itself, vertex for vertex, so the caller
+/// keeps using `in` and no copy is made (the usual case for most side planes of a resting
+/// contact).
 bool clipToPlane(const ClipPolygon& in, ClipPolygon& out, const Vec3& n, double offset,
-                 int planeLabel) {
+                 int planeLabel, double onPlane) {
   // Each vertex's signed distance once, not once as P and again as Q: the same expression on
-  // the same point, hence the same bits.
+  // the same point, hence the same bits. Flush faces put incident vertices on the side planes,
+  // where rounding scatters them ~1e-17 m to either side; one just outside would be cut off
+  // and replaced by two crossings a rounding apart, a fifth point that can crowd a real corner
+  // out of the four kept.
   std::array<double, 8> d;
   bool allInside = true;
   for (int k = 0; k < in.count; ++k) {
     d[k] = n.dot(in.v[k].p) - offset;
+    if (std::abs(d[k]) <= onPlane) d[k] = 0.0;
     allInside = allInside && d[k] <= 0.0;
   }
   if (allInside) return false;
@@ -232,8 +239,10 @@ void faceContact(const Obb& a, const Obb& b, const SeparatingAxisResult& sat, do
   const Vec3 v = ref.axes.col(rv);
   const double hu = ref.halfExtents[ru];
   const double hv = ref.halfExtents[rv];
+  // Rounding-sized distances from a side plane, and depths, count as ties (kDepthTieFraction).
+  const double tie = kDepthTieFraction * std::max(hu, hv);
   const auto clip = [&](const Vec3& n, double offset, int planeLabel) {
-    if (clipToPlane(buffers[current], buffers[1 - current], n, offset, planeLabel))
+    if (clipToPlane(buffers[current], buffers[1 - current], n, offset, planeLabel, tie))
       current = 1 - current;
   };
   clip(v, v.dot(refCenter) + hv, 4);
@@ -270,8 +279,7 @@ void faceContact(const Obb& a, const Obb& b, const SeparatingAxisResult& sat, do
     m.points[slot].featureId = c.featureId;
   };
   if (count > 4) {
-    const double depthTie = kDepthTieFraction * std::max(hu, hv);
-    const std::array<int, 4> keep = reduceToFour(kept, count, nRef, depthTie);
+    const std::array<int, 4> keep = reduceToFour(kept, count, nRef, tie);
     for (int k = 0; k < 4; ++k) put(k, kept[keep[k]]);
     count = 4;
   } else {

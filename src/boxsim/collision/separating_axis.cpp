@@ -38,6 +38,9 @@ struct AxisCandidate {
   int indexB = 0;
   double faceArea = 0.0;    ///< m^2, area of the face whose normal this is
   double height = 0.0;      ///< m, the face's box centre along the unsigned axis
+  /// 0 when the face's box comes first in the order of centreOrder, 1 when second: the last
+  /// label-free word between two tied faces.
+  int owner = 0;
 };
 
 /// An edge-edge axis L = a_i x b_j (not normalised) with its depth. The unit normal costs
@@ -71,17 +74,26 @@ bool axisBefore(const Vec3& p, const Vec3& q) {
   return u.z() < w.z();
 }
 
+/// -1 when a's centre comes before b's in lexicographic order (x, then y, then z), 1 when
+/// after, 0 when they are the same point. Swapping the boxes negates it.
+int centreOrder(const Obb& a, const Obb& b) {
+  for (int k = 0; k < 3; ++k)
+    if (a.center[k] != b.center[k]) return a.center[k] < b.center[k] ? -1 : 1;
+  return 0;
+}
+
 /// The face tie-break among faces already within the tie tolerance of the least depth:
 /// the larger face; then the box lower along the unsigned axis, so of two equal boxes stacked
 /// flush the lower one gives the reference face whatever the rounding; then the smaller depth;
-/// then the unsigned axis. Only for concentric boxes with equal faces does the label decide.
+/// then the unsigned axis; then the box whose centre comes first (centreOrder). Only for
+/// concentric boxes with equal faces does the label decide.
 bool betterFace(const AxisCandidate& p, const AxisCandidate& q) {
   if (p.faceArea != q.faceArea) return p.faceArea > q.faceArea;
   if (p.height != q.height) return p.height < q.height;
   if (p.depth != q.depth) return p.depth < q.depth;
   if (axisBefore(p.normal, q.normal) || axisBefore(q.normal, p.normal))
     return axisBefore(p.normal, q.normal);
-  if (p.kind != q.kind) return p.kind == AxisKind::FaceA;
+  if (p.owner != q.owner) return p.owner < q.owner;
   return p.indexA + p.indexB < q.indexA + q.indexB;
 }
 
@@ -97,8 +109,9 @@ bool betterEdge(const EdgeAxis& p, const EdgeAxis& q) {
 }
 
 /// Face axis k of the test (0..2: face axis k of A, 3..5: face axis k-3 of B) with its
-/// tie-break data, given its depth and dist = axis . D.
-AxisCandidate faceCandidate(const Obb& a, const Obb& b, int k, double depth, double dist) {
+/// tie-break data, given its depth, dist = axis . D and order = centreOrder(a, b).
+AxisCandidate faceCandidate(const Obb& a, const Obb& b, int k, double depth, double dist,
+                            int order) {
   AxisCandidate f;
   f.depth = depth;
   if (k < 3) {
@@ -108,15 +121,20 @@ AxisCandidate faceCandidate(const Obb& a, const Obb& b, int k, double depth, dou
     f.kind = AxisKind::FaceA;
     f.indexA = k;
     f.faceArea = 4.0 * a.halfExtents[i1] * a.halfExtents[i2];
-    f.height = unsignedAxis(f.normal).dot(a.center);
   } else {
     const int j = k - 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
     f.normal = dist > 0.0 ? Vec3(b.axes.col(j)) : Vec3(-b.axes.col(j));
     f.kind = AxisKind::FaceB;
     f.indexB = j;
     f.faceArea = 4.0 * b.halfExtents[j1] * b.halfExtents[j2];
-    f.height = unsignedAxis(f.normal).dot(b.center);
   }
+  const Vec3 axis = unsignedAxis(f.normal);
+  f.height = axis.dot(k < 3 ? a.center : b.center);
+  // With D perpendicular to the axis (dist == 0) the normal's sign and which of two equal
+  // faces wins have no geometric answer along it; the centres' order gives one that a swap
+  // negates. Only concentric boxes (order 0) fall back to the labels above.
+  f.owner = (order == 0 ? k < 3 : (k < 3) == (order < 0)) ? 0 : 1;
+  if (dist == 0.0 && order != 0) f.normal = order < 0 ? axis : Vec3(-axis);
   return f;
 }
 
@@ -163,11 +181,12 @@ SeparatingAxisResult separatingAxisTest(const Obb& a, const Obb& b,
   // (No face is tied only if the depths are NaN; the answer is then meaningless anyway.)
   AxisCandidate face;
   bool haveFace = false;
+  const int order = centreOrder(a, b);
   for (int k = 0; k < 6; ++k) {
     // A tie never crosses depth 0, so "intersecting" and "depth > 0" keep meaning the same.
     const bool tied = faceDepth[k] <= faceMin + tieWidth && (faceDepth[k] > 0.0) == (faceMin > 0.0);
     if (!tied) continue;
-    const AxisCandidate f = faceCandidate(a, b, k, faceDepth[k], faceDist[k]);
+    const AxisCandidate f = faceCandidate(a, b, k, faceDepth[k], faceDist[k], order);
     if (!haveFace || betterFace(f, face)) face = f;
     haveFace = true;
   }
@@ -231,9 +250,13 @@ SeparatingAxisResult separatingAxisTest(const Obb& a, const Obb& b,
   // edge axes coincide with the face normal, give face contacts. Separated: the largest gap
   // wins. Either way it must also win by more than the face tie width: flush faces whose
   // depth is rounding (±1e-11 m in a resting stack) would otherwise give an edge axis that
-  // rounding favours, and a one-point edge contact where a face rests on a face.
+  // rounding favours, and a one-point edge contact where a face rests on a face. Separated
+  // boxes whose every face axis overlaps (a box beside the edge of a wide ground, apart along
+  // an edge axis by less than the tie width) report that edge axis: the face's depth > 0 would
+  // contradict intersecting = false.
   const bool useEdge = haveEdge && (intersecting ? edge.depth < edgeBar - tieWidth
-                                                : edge.depth < face.depth - tieWidth);
+                                                : edge.depth < face.depth - tieWidth ||
+                                                      face.depth > 0.0);
 
   SeparatingAxisResult result;
   result.intersecting = intersecting;

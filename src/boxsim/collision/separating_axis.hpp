@@ -39,13 +39,15 @@ struct SeparatingAxisParams {
 /// the face tie width (faceTieTolerance times the boxes' size), and face axes within that
 /// width of each other go to the larger face, then the lower box.
 /// Separated or touching boxes: depth = -(largest gap over the tested axes) <= 0, up to that
-/// same width (an edge gap must exceed the face gap by more than it) and intersecting =
-/// false; the normal is that gap's axis.
+/// same width (an edge gap must exceed the face gap by more than it; an edge gap is reported
+/// whenever every face axis overlaps) and intersecting = false; the normal is that gap's axis.
 /// intersecting is exactly depth > 0.
 ///
 /// The answer is symmetric: swapping A and B gives the same depth (bit for bit), the negated
-/// normal, and FaceA and FaceB (indexA and indexB) exchanged; only two concentric boxes with
-/// equal tied faces keep the kind, with the same depth and negated normal.
+/// normal, and FaceA and FaceB (indexA and indexB) exchanged. Where the chosen face axis is
+/// perpendicular to the line of centres, its sign, and the choice between equal tied faces of
+/// A and B, go by the lexicographic order of the centres, so this holds there too; only two
+/// concentric boxes with equal tied faces keep the kind (and may keep the normal).
 /// \param a, b   the boxes; their axes must be orthonormal
 /// \return depth in m, unit normal from A to B (for an edge axis, the normalised cross
 ///         product, so depths along every axis are in metres)

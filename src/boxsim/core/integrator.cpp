@@ -9,6 +9,7 @@ std::string integratorName(Integrator integrator) {
     case Integrator::ForwardEuler: return "forward_euler";
     case Integrator::SemiImplicitEuler: return "semi_implicit_euler";
     case Integrator::RungeKutta4: return "runge_kutta_4";
+    case Integrator::SplitRotation: return "split_rotation";
   }
   return "unknown";
 }
@@ -17,8 +18,10 @@ Integrator parseIntegrator(const std::string& name) {
   if (name == "forward_euler") return Integrator::ForwardEuler;
   if (name == "semi_implicit_euler") return Integrator::SemiImplicitEuler;
   if (name == "runge_kutta_4") return Integrator::RungeKutta4;
-  throw std::invalid_argument("unknown integrator '" + name +
-                              "'; use forward_euler, semi_implicit_euler or runge_kutta_4");
+  if (name == "split_rotation") return Integrator::SplitRotation;
+  throw std::invalid_argument(
+      "unknown integrator '" + name +
+      "'; use forward_euler, semi_implicit_euler, runge_kutta_4 or split_rotation");
 }
 
 namespace {
@@ -69,6 +72,28 @@ void rungeKutta4(RigidBody& body, double dt, const Vec3& force, const Vec3& torq
 
 }  // namespace
 
+void splitRotation(RigidBody& body, double dt) {
+  if (body.immovable) return;
+  // L in body coordinates. The flow of L_i² / 2I_i alone turns the body about its axis i at
+  // the constant rate L_i / I_i: q ← q · rot(e_i, θ), and L_body ← rot(e_i, -θ) L_body, which
+  // keeps L_i, |L_body| and the world L = R L_body. Symmetric composition: second order.
+  Vec3 Lbody = body.s.q.conjugate() * body.s.L;
+  Quat q = body.s.q;
+  const auto turn = [&](int axis, double h) {
+    const double theta = h * Lbody[axis] * body.IbodyInvDiag[axis];
+    const Vec3 e = Vec3::Unit(axis);
+    q = q * Quat(Eigen::AngleAxisd(theta, e));
+    Lbody = Eigen::AngleAxisd(-theta, e) * Lbody;
+  };
+  turn(0, 0.5 * dt);
+  turn(1, 0.5 * dt);
+  turn(2, dt);
+  turn(1, 0.5 * dt);
+  turn(0, 0.5 * dt);
+  body.s.q = q.normalized();
+  body.updateDerived();
+}
+
 void integrateBody(RigidBody& body, double dt, const Vec3& gravity, Integrator integrator,
                    const Wrench& extra) {
   if (body.immovable || dt == 0.0) return;
@@ -96,6 +121,12 @@ void integrateBody(RigidBody& body, double dt, const Vec3& gravity, Integrator i
         rotate(s, body.omega, dt);
       }
       break;
+    case Integrator::SplitRotation:
+      s.P += dt * force;
+      s.x += dt * (body.invMass * s.P);
+      if (torque) s.L += dt * extra.torque;
+      splitRotation(body, dt);
+      return;  // splitRotation updated everything derived
   }
   body.updateDerived();
 }

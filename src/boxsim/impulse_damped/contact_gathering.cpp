@@ -29,20 +29,26 @@ ContactGatheringMode parseContactGathering(const std::string& name) {
                               "'; use every_pass or once_per_step");
 }
 
-void movePredicted(RigidBody& body, double dt, const Vec3& extraVelocity) {
+void movePredicted(RigidBody& body, double dt, const Vec3& extraVelocity,
+                   Integrator integrator) {
   body.s.x += dt * (body.v + extraVelocity);
+  if (integrator == Integrator::SplitRotation) {
+    splitRotation(body, dt);
+    return;
+  }
   const Quat w(0.0, body.omega.x(), body.omega.y(), body.omega.z());
   body.s.q.coeffs() += (0.5 * dt) * (w * body.s.q).coeffs();
   body.s.q.normalize();
   body.updateDerived();
 }
 
-SavedPoses predictPositions(World& world, double dt, const Vec3& extraVelocity) {
+SavedPoses predictPositions(World& world, double dt, const Vec3& extraVelocity,
+                            Integrator integrator) {
   SavedPoses saved;
   saved.reserve(world.bodies.size());
   for (RigidBody& body : world.bodies) {
     saved.push_back({body.s.x, body.s.q, body.R, body.Iinv, body.immovable});
-    if (!body.immovable) movePredicted(body, dt, extraVelocity);
+    if (!body.immovable) movePredicted(body, dt, extraVelocity, integrator);
   }
   return saved;
 }
@@ -75,6 +81,11 @@ ContactGathering::ContactGathering(const ImpulseParams& params)
     throw std::invalid_argument(
         "contact gathering: the exact reach must be a finite number >= 0 and the widening a "
         "finite number >= the exact reach (units of l)");
+  if (params.integrator != Integrator::SemiImplicitEuler &&
+      params.integrator != Integrator::SplitRotation)
+    throw std::invalid_argument("the impulse-based step integrates with semi_implicit_euler or "
+                                "split_rotation (its velocities come before its positions), not " +
+                                integratorName(params.integrator));
 }
 
 double ContactGathering::reach(const RigidBody& body, const Vec3& gravityStep, double dt) const {
@@ -251,6 +262,23 @@ bool ContactGathering::contactOf(const World& world, int i, int j, ContactManifo
 
 std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, GravityMode predict,
                                                      double margin) {
+  std::vector<ImpulseContact>& contacts = gather(world, dt, predict, margin);
+  if (!params_.commonLeverPoint) return contacts;
+  // ImpulseParams::commonLeverPoint: both impulses act at one point, the midpoint of the
+  // material points x + r' the found lever arms name at the current poses, so ±J exert no net
+  // torque about any fixed point.
+  for (ImpulseContact& c : contacts) {
+    const Vec3& xa = world.bodies[c.a].s.x;
+    const Vec3& xb = world.bodies[c.b].s.x;
+    const Vec3 q = 0.5 * ((xa + c.ra) + (xb + c.rb));
+    c.ra = q - xa;
+    c.rb = q - xb;
+  }
+  return contacts;
+}
+
+std::vector<ImpulseContact>& ContactGathering::gather(World& world, double dt, GravityMode predict,
+                                                      double margin) {
   const Vec3 gravityStep =
       predict == GravityMode::VelocityPlusGravity ? Vec3(dt * world.gravity) : Vec3(Vec3::Zero());
   if (params_.gathering == ContactGatheringMode::EveryPass) {

@@ -120,12 +120,15 @@ struct SavedPose {
 using SavedPoses = std::vector<SavedPose>;
 
 /// integrateObjectPositions of \alg{A.2} for one movable body: x += Δt (v + extra), q turned by
-/// Δt ω (one explicit quaternion step, renormalised); R, I⁻¹, v and ω follow.
-void movePredicted(RigidBody& body, double dt, const Vec3& extraVelocity);
+/// Δt ω (one explicit quaternion step, renormalised; with Integrator::SplitRotation, by
+/// splitRotation instead); R, I⁻¹, v and ω follow. Only those two integrators are accepted.
+void movePredicted(RigidBody& body, double dt, const Vec3& extraVelocity,
+                   Integrator integrator = Integrator::SemiImplicitEuler);
 
 /// integrateObjectPositions of \alg{A.2}: moves every movable body to x + Δt (v + extra) and
-/// turns it by Δt ω (one explicit quaternion step, renormalised); returns the poses before.
-SavedPoses predictPositions(World& world, double dt, const Vec3& extraVelocity);
+/// turns it as movePredicted does with `integrator`; returns the poses before.
+SavedPoses predictPositions(World& world, double dt, const Vec3& extraVelocity,
+                            Integrator integrator = Integrator::SemiImplicitEuler);
 
 /// Puts one body back to a saved pose, reusing the saved R and Iinv unless the body's
 /// mobility changed since (then everything derived is recomputed); v and ω are recomputed.
@@ -147,7 +150,8 @@ class ContactGathering {
   /// for movable bodies under VelocityPlusGravity), every pair closer than `margin` m, one
   /// ImpulseContact per pair in a fixed order, with the lever arms of its material points where
   /// the bodies stand: every body is back at its pose before the call when this returns (the
-  /// file comment, "Where COLLIDE acts"). The result stays valid until the next call.
+  /// file comment, "Where COLLIDE acts"; with ImpulseParams::commonLeverPoint, from the current
+  /// centres to one point, the midpoint of the two). The result stays valid until the next call.
   std::vector<ImpulseContact>& begin(World& world, double dt, GravityMode predict,
                                      double margin);
   /// Ends a pass. \alg{A.2} L6, revertToOriginalPositions, already happened in begin().
@@ -199,6 +203,9 @@ class ContactGathering {
   };
   static constexpr int kExactUnknown = -1;
 
+  /// begin() without ImpulseParams::commonLeverPoint: the contacts with the lever arms of the
+  /// poses they were found at.
+  std::vector<ImpulseContact>& gather(World& world, double dt, GravityMode predict, double margin);
   /// m: how far a body moves in a pass with its current velocities, Δt (|v'| + |ω| ρ).
   double reach(const RigidBody& body, const Vec3& gravityStep, double dt) const;
   /// Whether the cache was built for bodies of the same mobility as the world's now.

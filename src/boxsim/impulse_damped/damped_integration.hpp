@@ -12,6 +12,7 @@
 #include "boxsim/core/stepper.hpp"
 #include "boxsim/geometric_stability/geometric_stability.hpp"
 #include "boxsim/impulse_damped/contact_gathering.hpp"
+#include "boxsim/impulse_damped/continuous_collision.hpp"
 #include "boxsim/impulse_damped/dampen_objects.hpp"
 #include "boxsim/impulse_damped/impulse_params.hpp"
 #include "boxsim/impulse_damped/impulse_pass.hpp"
@@ -28,6 +29,10 @@ struct DampedIntegrationParams {
   GeometricStabilityParams geometricStability;  ///< SETGEOMETRICALLYSTABLE (\alg{A.2 L6})
   SleepParams sleep;              ///< sleeping bodies at rest (\thesis{§4.5}), on by default
   PlausibilityParams plausibility;  ///< perturbed fast collisions (\thesis{§4.2}), off by default
+  /// Continuous collision detection for fast bodies, off by default: when on, a step in which a
+  /// fast body would reach another is split at the first time of impact
+  /// (continuous_collision.hpp), so the passes gather the contact before the body is past it.
+  ContinuousCollisionParams continuousCollision;
   bool damp = true;               ///< run DAMPENOBJECTS' momentum damping (L1-L21)
   /// Also damp bodies that only collided in the step (RESOLVECOLLISIONS), not just those in
   /// contact. Off: A.2 L2 damps bodies that "had a contact interaction", and the thesis tells
@@ -63,7 +68,9 @@ class DampedIntegrationStepper final : public Stepper {
   /// Every parameter, including "seed", the plausibility generator's seed.
   std::map<std::string, std::string> parameters() const override;
   /// \alg{A.2} DAMPEDINTEGRATION L1-L6 for one step of dt s, with sleeping bodies standing in
-  /// as immovable and high-speed collisions perturbed as the class comment describes.
+  /// as immovable and high-speed collisions perturbed as the class comment describes; with
+  /// continuous collision detection on, as several such steps that together cover dt, each
+  /// ending at the next time of impact of a fast body (at least dt / maxSubsteps long).
   /// StepStats::sleeping counts the bodies asleep after the step.
   StepStats step(World& world, double dt) override;
   /// The geometric stability of each body found at the end of the last step (\alg{A.2 L6}); a
@@ -78,6 +85,9 @@ class DampedIntegrationStepper final : public Stepper {
   long narrowPhases() const { return gathering_.narrowPhases(); }
 
  private:
+  /// \alg{A.2} DAMPEDINTEGRATION L1-L6 for dt s, as step() without continuous collisions.
+  StepStats advance(World& world, double dt);
+
   DampedIntegrationParams params_;
   ContactGathering gathering_;
   VisualPlausibility plausibility_;

@@ -90,11 +90,11 @@ void dampMomenta(World& world, double dt, const std::vector<char>& touched,
 }
 
 DampingStats dampenObjects(World& world, double dt, const std::vector<char>& touched,
-                           const DampingParams& params) {
+                           const DampingParams& params, Integrator integrator) {
   DampingStats stats;
   dampMomenta(world, dt, touched, params, &stats);
   // A.2 L22: integrateObjectPositions with the velocities as they now are.
-  const SavedPoses old = predictPositions(world, dt, Vec3::Zero());
+  const SavedPoses old = predictPositions(world, dt, Vec3::Zero(), integrator);
   // A.2 L23-L28: a body that would move less than ε10 and turn less than ε11 stays put.
   // DEVIATION(A.2 L23): only bodies that had a contact interaction and lie with a face
   // perpendicular to gravity (§5.3's third mark of a chattering body) are snapped. A body in

@@ -34,9 +34,10 @@ void dampMomenta(World& world, double dt, const std::vector<char>& touched,
                  const DampingParams& params, DampingStats* stats = nullptr);
 
 /// The whole of DAMPENOBJECTS (\alg{A.2 L1-L28}): dampMomenta, then integrateObjectPositions
-/// with the current velocities (L22), then the snap of L23-L28 for bodies in contact that lie
-/// with a face perpendicular to gravity.
+/// with the current velocities (L22, predictPositions with `integrator`), then the snap of
+/// L23-L28 for bodies in contact that lie with a face perpendicular to gravity.
 DampingStats dampenObjects(World& world, double dt, const std::vector<char>& touched,
-                           const DampingParams& params);
+                           const DampingParams& params,
+                           Integrator integrator = Integrator::SemiImplicitEuler);
 
 }  // namespace boxsim

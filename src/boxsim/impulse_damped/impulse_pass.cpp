@@ -127,7 +127,9 @@ std::map<std::string, std::string> impulseParameters(const ImpulseParams& params
           {"contact_margin_per_l", shortestText(params.contactMargin)},
           {"contact_gathering", contactGatheringName(params.gathering)},
           {"slow_widening_per_l", shortestText(params.slowWidening)},
-          {"exact_reach_per_l", shortestText(params.exactReach)}};
+          {"exact_reach_per_l", shortestText(params.exactReach)},
+          {"common_lever_point", params.commonLeverPoint ? "on" : "off"},
+          {"integrator", integratorName(params.integrator)}};
 }
 
 double smallestHalfExtent(const World& world) {

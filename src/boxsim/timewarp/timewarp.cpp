@@ -122,20 +122,12 @@ class Frame {
   }
 
   /// The swept variant's test of pair (a, b) over [max(validTimes), end]: conservative
-  /// advancement. The separating-axis gap (−depth) never exceeds the boxes' distance, and no
-  /// point of a body moves faster than |v| + |g| Δ + |ω|max |h| over the rest of the frame, so
-  /// advancing by gap / (sum of both bounds) never passes a contact.
+  /// advancement. The separating-axis gap (−depth) never exceeds the boxes' distance, and the
+  /// gap closes no faster than closingSpeedBound, so advancing by gap / that bound never passes
+  /// a contact.
   std::optional<PendingCollision> sweep(int a, int b) {
     double t = std::max(validTime_[a], validTime_[b]);
-    const auto speedBound = [&](int k) {
-      const RigidBody& body = valid_[k];
-      if (body.immovable) return 0.0;
-      // |ω| = |I⁻¹ L| <= |L| / I_min, and |L| is constant in free flight.
-      const double omegaMax = body.s.L.norm() * body.IbodyInvDiag.maxCoeff();
-      return body.v.norm() + world_.gravity.norm() * (end_ - validTime_[k]) +
-             omegaMax * body.halfExtents.norm();
-    };
-    const double speed = speedBound(a) + speedBound(b);
+    const double speed = closingSpeedBound(a, b);
     for (int iteration = 0; iteration < 1000 && t <= end_; ++iteration) {
       const RigidBody sa = stateAt(a, t), sb = stateAt(b, t);
       const double d = depth(sa, sb);
@@ -154,6 +146,31 @@ class Frame {
     // or past the frame: the test states decide, with bisection, as in the simple variant.
     if (depth(test_[a], test_[b]) > params_.depthTolerance) return bisect(a, b, end_);
     return std::nullopt;
+  }
+
+  /// m/s: a bound on how fast any point of a approaches any point of b over the rest of the
+  /// frame. stateAt moves a body from its valid time t_k in one step, its centre along
+  /// x_k + v_k τ + c g τ² (τ = t − t_k; c = 0, ½ or 1 by the integrator), so the centres'
+  /// relative velocity is v_b − v_a + 2 c g (t_a − t_b): the fall both bodies share cancels,
+  /// and a pair resting together, which moves as one, gets a bound near zero instead of the
+  /// 2 g Δ of two falls. Against an immovable body it is |v| + 2 g Δ. Turning adds
+  /// |ω|max |h| for each movable body (|ω| = |I⁻¹ L| <= |L| / I_min, |L| constant in flight).
+  double closingSpeedBound(int a, int b) const {
+    const RigidBody& A = valid_[a];
+    const RigidBody& B = valid_[b];
+    const double g = world_.gravity.norm();
+    const auto turning = [](const RigidBody& body) {
+      return body.immovable ? 0.0
+                            : body.s.L.norm() * body.IbodyInvDiag.maxCoeff() * body.halfExtents.norm();
+    };
+    double linear = 0.0;
+    if (A.immovable || B.immovable) {
+      const int k = A.immovable ? b : a;
+      linear = valid_[k].v.norm() + 2.0 * g * (end_ - validTime_[k]);
+    } else {
+      linear = (B.v - A.v).norm() + 2.0 * g * std::abs(validTime_[a] - validTime_[b]);
+    }
+    return linear + turning(A) + turning(B);
   }
 
   /// The collision of pair (a, b) after the bodies' valid times, if any: the swept test, or
