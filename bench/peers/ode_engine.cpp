@@ -33,6 +33,10 @@ class OdeEngine : public PeerEngine {
   OdeEngine() {
     static OdeLibrary library;
     world_ = dWorldCreate();
+    // World settings (the top of the file); the scene's gravity and sleeping come at load().
+    dWorldSetCFM(world_, 1e-5);
+    dWorldSetContactSurfaceLayer(world_, 0.001);
+    dWorldSetAutoDisableAverageSamplesCount(world_, 10);
     space_ = dHashSpaceCreate(nullptr);
     contacts_ = dJointGroupCreate(0);
   }
@@ -56,11 +60,8 @@ class OdeEngine : public PeerEngine {
     // a run does not depend on the runs before it in the process.
     dRandSetSeed(1);
     dWorldSetGravity(world_, scene.gravity.x(), scene.gravity.y(), scene.gravity.z());
-    dWorldSetCFM(world_, 1e-5);
-    dWorldSetContactSurfaceLayer(world_, 0.001);
     // Bodies take the world's auto-disable settings when they are created, below.
     dWorldSetAutoDisableFlag(world_, scene.sleep ? 1 : 0);
-    dWorldSetAutoDisableAverageSamplesCount(world_, 10);
     restitution_ = scene.restitution;
     friction_ = scene.friction;
     boxes_ = scene.boxes;
