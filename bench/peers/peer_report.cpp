@@ -69,6 +69,18 @@ const RunResult* fasterPeer(const SceneResults& scene) {
   return best;
 }
 
+/// "die 10 s, tower10 10 s, ...": each base scene's simulated time, once.
+std::string durations(const std::vector<SceneResults>& scenes) {
+  std::string text;
+  for (const SceneResults& s : scenes) {
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, "%g", s.spec.duration);
+    const std::string item = s.spec.base + " " + seconds + " s";
+    if (text.find(s.spec.base + " ") == std::string::npos) text += (text.empty() ? "" : ", ") + item;
+  }
+  return text;
+}
+
 std::string tableRow(const SceneResults& scene, const RunResult& r) {
   const RunMeasures& m = r.measures;
   const RunResult* boxsim = find(scene, kBoxsim);
@@ -206,7 +218,8 @@ std::string markdownPage(const std::vector<SceneResults>& scenes, const RunSetup
       << "**Mean** ms/step is over every step of every repetition; median and 95th percentile "
       << "beside it; *rep means* is the range of the repetitions' means (the machine's noise). "
       << "The ratio column is the row's mean divided by boxsim damped integration's mean in the "
-      << "same scene: above 1, boxsim is faster. Sleeping (each engine's own: boxsim's §4.5, "
+      << "same scene: above 1, boxsim is faster. Simulated time: " << durations(scenes)
+      << " (the pyramids are shot at 5 s). Sleeping (each engine's own: boxsim's §4.5, "
       << "Bullet's deactivation, ODE's auto-disable) is on unless the scene says `sleep off`.\n\n"
       << "The physics is measured on the first repetition with one yardstick for every engine, "
       << "boxsim's separating-axis test on the engine's poses: penetration is the deepest overlap "
