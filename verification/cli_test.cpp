@@ -3,6 +3,7 @@
 // the fix, and leaves no output file; a run streams its frames, so its memory does not grow
 // with its length.
 #include <fcntl.h>
+#include <poll.h>
 #include <pty.h>
 #include <signal.h>
 #include <spawn.h>
@@ -153,6 +154,22 @@ int pauseThenInterrupt(pid_t pid) {
   int status = 0;
   ::waitpid(pid, &status, 0);
   return status;
+}
+
+/// Reads the terminal `master` until `wanted` has appeared or `limit` has passed (a bound for a
+/// slow machine, not a timing); returns what was read.
+std::string readTerminalUntil(int master, char wanted, std::chrono::seconds limit) {
+  std::string text;
+  const auto end = std::chrono::steady_clock::now() + limit;
+  char buffer[4096];
+  while (text.find(wanted) == std::string::npos && std::chrono::steady_clock::now() < end) {
+    pollfd fd{master, POLLIN, 0};
+    if (::poll(&fd, 1, 100) <= 0) continue;
+    const ssize_t n = ::read(master, buffer, sizeof buffer);
+    if (n <= 0) break;
+    text.append(buffer, static_cast<std::size_t>(n));
+  }
+  return text;
 }
 
 /// Files in `dir`.
@@ -470,6 +487,13 @@ TEST_CASE("A run's peak memory does not grow with its step count, raw, box-filte
   // 450 bytes (measured: 51 MB at 10^5 steps against 11 MB at 10^4); streamed, the peak stays
   // within a few kilobytes. The 4 MiB allowed for the allocator's noise is 46 bytes a frame
   // over the 90 000 frames between the runs, a tenth of a frame.
+#if defined(__SANITIZE_ADDRESS__)
+  // AddressSanitizer holds freed memory in its quarantine (256 MB by default), so a sanitized
+  // run's resident memory grows with every allocation, streamed or not: the claim is checked
+  // by the Release build's run of this test.
+  WARN("peak memory is not measured under AddressSanitizer");
+  return;
+#endif
   const ScratchDir kDir;
   const std::string err = (kDir / "stderr.txt").string();
   const long kAllowanceKiB = 4096;
@@ -573,8 +597,12 @@ TEST_CASE("The progress bar is drawn on a terminal and never into a redirected s
   REQUIRE(onTerminal > 0);
   const ChildGuard terminalGuard(onTerminal);
   REQUIRE(waitForFile(dir, ".long.dat.tmp"));
-  const int terminalStatus = pauseThenInterrupt(onTerminal);
-  std::string terminalText;
+  // The bar appears after a second of running; wait for it (sanitized builds start slowly),
+  // then interrupt.
+  std::string terminalText = readTerminalUntil(master, '%', std::chrono::seconds(60));
+  ::kill(onTerminal, SIGINT);
+  int terminalStatus = 0;
+  ::waitpid(onTerminal, &terminalStatus, 0);
   char buffer[4096];
   for (ssize_t n = 0; (n = ::read(master, buffer, sizeof buffer)) > 0;) terminalText.append(buffer, n);
   ::close(master);
