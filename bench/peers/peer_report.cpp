@@ -81,6 +81,21 @@ std::string durations(const std::vector<SceneResults>& scenes) {
   return text;
 }
 
+/// The first engine whose name starts with `prefix`, Bullet's CCD row aside, or nullptr.
+const RunResult* engineStarting(const SceneResults& scene, const std::string& prefix) {
+  for (const RunResult& r : scene.runs)
+    if (r.engine.rfind(prefix, 0) == 0 && r.engine.find("CCD") == std::string::npos) return &r;
+  return nullptr;
+}
+
+/// m: the shallowest final penetration of the peers (not boxsim) in the scene; infinity: none.
+double bestPeerFinalPenetration(const SceneResults& scene) {
+  double best = INFINITY;
+  for (const RunResult& r : scene.runs)
+    if (r.engine.rfind("boxsim", 0) != 0) best = std::min(best, r.measures.finalPenetration);
+  return best;
+}
+
 std::string tableRow(const SceneResults& scene, const RunResult& r) {
   const RunMeasures& m = r.measures;
   const RunResult* boxsim = find(scene, kBoxsim);
@@ -107,15 +122,11 @@ std::string summary(const std::vector<SceneResults>& scenes) {
     const double ratio = boxsim->meanMs() / peer->meanMs();
     (ratio < 1 ? ahead : behind) << "- " << s.spec.label() << ": " << fixed(ratio, 2) << "× "
                                  << peer->engine << "'s mean\n";
-    double bestFinal = INFINITY;
-    for (const RunResult& r : s.runs)
-      if (r.engine.rfind("boxsim", 0) != 0) bestFinal = std::min(bestFinal, r.measures.finalPenetration);
+    const double bestFinal = bestPeerFinalPenetration(s);
     if (boxsim->measures.finalPenetration > bestFinal + 1e-4)
       deeper << "- " << s.spec.label() << ": " << fixed(1000 * boxsim->measures.finalPenetration, 1)
              << " mm against " << fixed(1000 * bestFinal, 1) << " mm\n";
-    const RunResult* bullet = nullptr;
-    for (const RunResult& r : s.runs)
-      if (r.engine.rfind("Bullet", 0) == 0 && r.engine.find("CCD") == std::string::npos) bullet = &r;
+    const RunResult* bullet = engineStarting(s, "Bullet");
     if (bullet && s.spec.sleep && bullet->measures.allAsleepFrom >= 0 &&
         (boxsim->measures.allAsleepFrom < 0 ||
          boxsim->measures.allAsleepFrom > bullet->measures.allAsleepFrom))
@@ -138,12 +149,6 @@ const SceneResults* sceneOf(const std::vector<SceneResults>& scenes, const std::
   return nullptr;
 }
 
-const RunResult* engineStarting(const SceneResults& scene, const std::string& prefix) {
-  for (const RunResult& r : scene.runs)
-    if (r.engine.rfind(prefix, 0) == 0 && r.engine.find("CCD") == std::string::npos) return &r;
-  return nullptr;
-}
-
 /// The dense-pile aims: boxsim damped at most half the faster peer's mean, no deeper final
 /// penetration than the best peer, every box asleep no later than Bullet; on the 10 000-cube
 /// clump, faster than ODE. Each line says met or missed, with the measured numbers.
@@ -157,9 +162,7 @@ std::string aims(const std::vector<SceneResults>& scenes) {
     const RunResult* peer = s ? fasterPeer(*s) : nullptr;
     if (!boxsim || !peer) continue;
     const double ratio = boxsim->meanMs() / peer->meanMs();
-    double bestFinal = INFINITY;
-    for (const RunResult& r : s->runs)
-      if (&r != boxsim) bestFinal = std::min(bestFinal, r.measures.finalPenetration);
+    const double bestFinal = bestPeerFinalPenetration(*s);
     const RunResult* bullet = engineStarting(*s, "Bullet");
     const double mine = boxsim->measures.allAsleepFrom;
     const double theirs = bullet ? bullet->measures.allAsleepFrom : -1;

@@ -88,8 +88,8 @@ void runRepetition(const SceneSpec& spec, PeerEngine& engine, double dt, RunResu
   const bool measure = result.repMeanMs.empty();  // the physics of the first repetition
   const long steps = std::lround(spec.duration / dt);
   const int every = scene.boxes.size() > kLargeScene ? kMeasureEveryLarge : 1;
-  const int tracked = spec.tower ? static_cast<int>(mirror.bodies.size()) - 1
-                      : spec.die ? static_cast<int>(mirror.bodies.size()) - 1 : -1;
+  // The tower's top box and the die are each their scene's last body.
+  const int tracked = spec.tower || spec.die ? static_cast<int>(mirror.bodies.size()) - 1 : -1;
   const Vec3 trackedStart = tracked >= 0 ? scene.boxes[static_cast<std::size_t>(tracked)].x : Vec3::Zero();
   RunMeasures m;
   m.bodies = mirror.movableCount();

@@ -96,12 +96,14 @@ PassResult impulsePass(World& world, double dt, double restitution, GravityMode 
   result.contacts = static_cast<int>(contacts.size());
   const CollideCall call{restitution, impulseGravity, dt};
   for (ImpulseContact& c : contacts) {
+    // Once one contact changed a body the pass has changed the world: no more comparing.
+    const bool watch = !result.changed;
     const BodyMomenta beforeA(world.bodies[c.a]), beforeB(world.bodies[c.b]);
     if (beforeCollide) beforeCollide(world, c, call);
     if (touched) (*touched)[c.a] = (*touched)[c.b] = 1;
     if (collide(world, c, restitution, impulseGravity, dt, stable) > 0.0) ++result.impulses;
-    result.changed = result.changed || !beforeA.same(world.bodies[c.a]) ||
-                     !beforeB.same(world.bodies[c.b]);
+    if (watch)
+      result.changed = !beforeA.same(world.bodies[c.a]) || !beforeB.same(world.bodies[c.b]);
   }
   // The momenta the impulses changed stay.
   gathering.end(world);
