@@ -124,6 +124,11 @@ void run(const RunArgs& args) {
   const RemoveOnSignal cleanup(writer.temporaryPath());
   Scene scene = loadScene(args.scene);
   if (!args.broadPhase.empty()) scene.world.broadPhase = parseBroadPhase(args.broadPhase);
+  try {
+    requireFrictionModel(scene.world, *stepper);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(args.scene + ": " + e.what());
+  }
 
   // Frames stream through the filter (if any) into the temporary file, renamed at the end.
   const std::unique_ptr<FrameSink> filter = makeFilterStage(args.filter, writer);

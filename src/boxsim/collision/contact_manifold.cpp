@@ -46,6 +46,7 @@
 #include "boxsim/collision/contact_manifold.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -368,6 +369,47 @@ std::vector<ContactPoint> contactArea(const Obb& a, const Obb& b, const Separati
 ContactManifold collideBoxes(const Obb& a, const Obb& b, double margin,
                              const SeparatingAxisParams& params) {
   return buildContactManifold(a, b, separatingAxisTest(a, b, params), margin);
+}
+
+namespace {
+/// ∫|r| dA over the triangle of the origin and the segment from p to q (2D, m³): with h the
+/// distance of the origin from the segment's line and t the signed position along it,
+/// ∫ = [t h √(h² + t²) + h³ asinh(t / h)] / 6 between the ends (polar coordinates about the
+/// origin, r up to h / cos φ).
+double fanIntegral(const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
+  const Eigen::Vector2d d = q - p;
+  const double length = d.norm();
+  if (length == 0.0) return 0.0;
+  const Eigen::Vector2d e = d / length;
+  const double h = std::abs(p.x() * e.y() - p.y() * e.x());
+  if (h == 0.0) return 0.0;
+  const auto F = [h](double t) { return (t * h * std::hypot(h, t) + h * h * h * std::asinh(t / h)) / 6.0; };
+  const double tP = p.dot(e);
+  return F(tP + length) - F(tP);
+}
+}  // namespace
+
+double contactPatchRadius(const ContactManifold& m) {
+  if (m.kind == AxisKind::EdgeEdge || m.count < 2) return 0.0;
+  if (m.count == 2) return 0.25 * (m.points[1].position - m.points[0].position).norm();
+  const Vec3 c = m.centroid();
+  // The points in the contact plane, about the centroid, in order of angle.
+  const Vec3 t1 = m.normal.unitOrthogonal();
+  const Vec3 t2 = m.normal.cross(t1);
+  std::array<Eigen::Vector2d, 4> p;
+  for (int i = 0; i < m.count; ++i) {
+    const Vec3 r = m.points[i].position - c;
+    p[i] = Eigen::Vector2d(r.dot(t1), r.dot(t2));
+  }
+  const std::array<int, 4> order = counterClockwiseOrder(p, m.count);
+  double integral = 0.0, area = 0.0;
+  for (int k = 0; k < m.count; ++k) {
+    const Eigen::Vector2d& a = p[order[k]];
+    const Eigen::Vector2d& b = p[order[(k + 1) % m.count]];
+    integral += fanIntegral(a, b);
+    area += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
+  }
+  return area > 0.0 ? integral / area : 0.0;
 }
 
 }  // namespace boxsim

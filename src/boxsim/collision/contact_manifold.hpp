@@ -42,4 +42,13 @@ std::vector<ContactPoint> contactArea(const Obb& a, const Obb& b, const Separati
 ContactManifold collideBoxes(const Obb& a, const Obb& b, double margin = 0.0,
                              const SeparatingAxisParams& params = {});
 
+/// The mean distance from the centroid of a contact patch of uniform pressure, m: the radius
+/// ρ at which a pressed patch resists spin about its normal (Coulomb torque up to μ N ρ). The
+/// patch is the convex polygon of the manifold's points seen along its normal (3 or 4 points:
+/// the mean of |r| over its area, exactly, from a fan of triangles about the centroid, each
+/// integrated in closed form); 2 points are a line of contact (a quarter of its length); 0 or
+/// 1 point, or an edge–edge manifold, give 0. A square of side s gives
+/// s (√2 + ln(1 + √2)) / 6 ≈ 0.3826 s.
+double contactPatchRadius(const ContactManifold& m);
+
 }  // namespace boxsim

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <array>
 #include <cstring>
 #include <string>
 
@@ -34,5 +35,9 @@ std::string shortestText(double value);
 inline bool sameBits(const Vec3& a, const Vec3& b) {
   return std::memcmp(a.data(), b.data(), 3 * sizeof(double)) == 0;
 }
+
+/// The first `count` (at most 4) points of q, m, about a point inside their convex hull, in
+/// counter-clockwise order of their angle about it: the outline of a contact patch.
+std::array<int, 4> counterClockwiseOrder(const std::array<Eigen::Vector2d, 4>& q, int count);
 
 }  // namespace boxsim

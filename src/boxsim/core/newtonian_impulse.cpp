@@ -1,5 +1,10 @@
 #include "boxsim/core/newtonian_impulse.hpp"
 
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Cholesky>
+
 namespace boxsim {
 
 double relativeNormalVelocity(const RigidBody& a, const RigidBody& b, const Vec3& ra,
@@ -37,6 +42,120 @@ double applyNewtonianImpulse(RigidBody& a, RigidBody& b, const Vec3& ra, const V
     b.updateVelocities();
   }
   return j;
+}
+
+namespace {
+/// The cross-product matrix [r]× with [r]× v = r × v.
+Mat3 crossMatrix(const Vec3& r) {
+  Mat3 m;
+  m << 0.0, -r.z(), r.y(), r.z(), 0.0, -r.x(), -r.y(), r.x(), 0.0;
+  return m;
+}
+
+}  // namespace
+
+namespace {
+/// The largest s in [0, 1] with s p inside the convex polygon q (2D, about a point inside it;
+/// `count` >= 3 vertices in any order), or, for 2 vertices, the point of the segment nearest
+/// to p along it (returned as the replacement of p).
+Eigen::Vector2d pressureCentreWithin(const Eigen::Vector2d& p, const std::array<Eigen::Vector2d, 4>& q,
+                                     int count) {
+  if (count == 2) {
+    const Eigen::Vector2d e = (q[1] - q[0]).normalized();
+    const double lo = std::min(q[0].dot(e), q[1].dot(e)), hi = std::max(q[0].dot(e), q[1].dot(e));
+    return std::clamp(p.dot(e), lo, hi) * e;
+  }
+  const std::array<int, 4> order = counterClockwiseOrder(q, count);
+  double scale = 1.0;
+  for (int k = 0; k < count; ++k) {
+    const Eigen::Vector2d& from = q[order[k]];
+    const Eigen::Vector2d& to = q[order[(k + 1) % count]];
+    const Eigen::Vector2d outward(to.y() - from.y(), from.x() - to.x());  // counter-clockwise
+    const double reach = outward.dot(p), limit = outward.dot(from);
+    if (reach > limit) scale = std::min(scale, std::max(0.0, limit) / reach);
+  }
+  return scale * p;
+}
+}  // namespace
+
+void applyPatchFriction(RigidBody& a, RigidBody& b, const Vec3& ra, const Vec3& rb, const Vec3& n,
+                        const Friction& friction, const ContactPatch& patch, FrictionSum& sum) {
+  if (a.immovable && b.immovable) return;
+  using Vec5 = Eigen::Matrix<double, 5, 1>;
+  using Mat5 = Eigen::Matrix<double, 5, 5>;
+  const Vec3 t1 = n.unitOrthogonal();
+  const Vec3 t2 = n.cross(t1);
+  const bool torsion = patch.radius > 0.0;
+  const bool tipping = patch.count >= 2;
+  // The pair's inverse mass for a generalised impulse (J, A) (b: +J at x_b + rb and +A; a the
+  // opposite) against the relative twist (u, Ω) at the centroid:
+  // [[K, C], [Cᵀ, I_a⁻¹ + I_b⁻¹]] with K Mirtich's collision matrix and C = -[rb]× I_b⁻¹ - [ra]× I_a⁻¹.
+  const Mat3 Ra = crossMatrix(ra), Rb = crossMatrix(rb);
+  Eigen::Matrix<double, 6, 6> M;
+  M.topLeftCorner<3, 3>() = (a.invMass + b.invMass) * Mat3::Identity() - Ra * a.Iinv * Ra - Rb * b.Iinv * Rb;
+  M.topRightCorner<3, 3>() = -(Rb * b.Iinv) - Ra * a.Iinv;
+  M.bottomLeftCorner<3, 3>() = M.topRightCorner<3, 3>().transpose();
+  M.bottomRightCorner<3, 3>() = a.Iinv + b.Iinv;
+  // The rows friction works on: sliding along t1, t2, spin about n, tipping about t1, t2.
+  Eigen::Matrix<double, 6, 5> P = Eigen::Matrix<double, 6, 5>::Zero();
+  P.block<3, 1>(0, 0) = t1;
+  P.block<3, 1>(0, 1) = t2;
+  if (torsion) P.block<3, 1>(3, 2) = n;
+  if (tipping) {
+    P.block<3, 1>(3, 3) = t1;
+    P.block<3, 1>(3, 4) = t2;
+  }
+  Mat5 W = P.transpose() * M * P;
+  for (int i = 2; i < 5; ++i)
+    if (P.col(i).isZero()) W(i, i) = 1.0;  // a row left out: its impulse stays 0
+  Eigen::Matrix<double, 6, 1> twist;
+  twist << (b.v + b.omega.cross(rb)) - (a.v + a.omega.cross(ra)), b.omega - a.omega;
+  const Vec5 slip = P.transpose() * twist;
+  Vec5 before;
+  before << t1.dot(sum.tangential), t2.dot(sum.tangential), sum.torsional, t1.dot(sum.couple),
+      t2.dot(sum.couple);
+  // Sticking: the sums that stop every row.
+  Vec5 total = before - W.ldlt().solve(slip);
+  if (!total.allFinite()) return;
+  // Coulomb: (J_t, τ / ρ) within μs N, else on the ellipse of μd N.
+  const double N = sum.normal;
+  const double load = std::hypot(total(0), total(1), torsion ? total(2) / patch.radius : 0.0);
+  if (load > friction.muStatic * N) {
+    total.head<3>() *= load > 0.0 ? friction.muDynamic * N / load : 0.0;
+    // Sliding: the couple that stops the tipping under the friction as limited.
+    const Eigen::Vector2d tip = slip.tail<2>() + W.block<2, 3>(3, 0) * (total.head<3>() - before.head<3>());
+    total.tail<2>() = before.tail<2>() - W.block<2, 2>(3, 3).ldlt().solve(tip);
+  }
+  // The couple: its centre of pressure p = n × couple / N within the patch.
+  if (tipping) {
+    std::array<Eigen::Vector2d, 4> q;
+    for (int k = 0; k < patch.count; ++k)
+      q[k] = Eigen::Vector2d(patch.offsets[k].dot(t1), patch.offsets[k].dot(t2));
+    // n × (x t1 + y t2) = x t2 - y t1, and back: couple = N p × n.
+    const Eigen::Vector2d p = N > 0.0 ? Eigen::Vector2d(Eigen::Vector2d(-total(4), total(3)) / N)
+                                      : Eigen::Vector2d(Eigen::Vector2d::Zero());
+    const Eigen::Vector2d held = pressureCentreWithin(p, q, patch.count);
+    total(3) = N * held.y();
+    total(4) = -N * held.x();
+  }
+  const Vec5 change = total - before;
+  // The kinetic energy changes by Δ · slip + ½ Δᵀ W Δ: an increment that would raise it waits.
+  if (change.dot(slip) + 0.5 * change.dot(W * change) > 1e-12 * slip.squaredNorm() / W.norm()) return;
+  const Vec3 J = change(0) * t1 + change(1) * t2;
+  const Vec3 A = change(2) * n + change(3) * t1 + change(4) * t2;
+  if (!a.immovable) {
+    a.s.P -= J;
+    a.s.L -= ra.cross(J) + A;
+    a.updateVelocities();
+  }
+  if (!b.immovable) {
+    b.s.P += J;
+    b.s.L += rb.cross(J) + A;
+    b.updateVelocities();
+  }
+  sum.tangential = total(0) * t1 + total(1) * t2;
+  sum.torsional = total(2);
+  sum.couple = total(3) * t1 + total(4) * t2;
 }
 
 }  // namespace boxsim

@@ -29,6 +29,23 @@ struct BodyState {
 /// \return (m/3)(b²+c², a²+c², a²+b²), the diagonal of I_body.
 Vec3 boxInertiaDiagonal(const Vec3& halfExtents, double mass);
 
+/// A body's Coulomb friction coefficients (unitless, >= 0, dynamic <= static). Both 0, the
+/// default, is the thesis' frictionless contact (\thesis{§3.3.2}: "we did not model friction").
+struct Friction {
+  double muStatic = 0.0;   ///< μs: sticking holds while |tangential impulse| <= μs × normal
+  double muDynamic = 0.0;  ///< μd: a sliding contact's friction impulse is μd × normal
+  /// Whether both coefficients are zero: contact is frictionless.
+  bool frictionless() const { return muStatic == 0.0 && muDynamic == 0.0; }
+};
+
+/// The friction of a contact between bodies of friction a and b: the geometric mean of each
+/// coefficient, √(μa μb) (Box2D's rule; Bullet multiplies the two bodies' coefficients, so a
+/// peer body given √μ matches). Equal coefficients combine to themselves; a frictionless body
+/// makes its contacts frictionless.
+inline Friction combinedFriction(const Friction& a, const Friction& b) {
+  return {std::sqrt(a.muStatic * b.muStatic), std::sqrt(a.muDynamic * b.muDynamic)};
+}
+
 /// A rigid box. Immovable bodies (the ground) have zero inverse mass and inverse inertia,
 /// so impulses and gravity leave them where they are (\thesis{§3.1}).
 class RigidBody {
@@ -45,6 +62,7 @@ class RigidBody {
   double invMass = 1.0;                    ///< 1/kg; 0 for an immovable body
   Vec3 IbodyInvDiag = Vec3::Constant(6.0); ///< inverse principal moments, 1/(kg m^2)
   bool immovable = false;  ///< infinite mass and inertia: never moves
+  Friction friction;       ///< Coulomb coefficients; frictionless by default
 
   // --- state (Witkin-Baraff) ---
   BodyState s;  ///< the state x, q, P, L

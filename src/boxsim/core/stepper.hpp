@@ -58,6 +58,11 @@ class Stepper {
   /// The work limit behind StepStats::limitReached, in words for a warning: the bound and what
   /// makes a run meet it. Empty for a technique without one.
   virtual std::string workLimit() const { return {}; }
+  /// Whether the technique models the Coulomb friction of RigidBody::friction. The thesis'
+  /// techniques are frictionless (\thesis{§3.3.2}); impulse and damped integration add it
+  /// (core/newtonian_impulse.hpp, applyCoulombImpulse). A driver refuses a world with friction
+  /// under a technique that would ignore it (requireFrictionModel in io/simulate.hpp).
+  virtual bool modelsFriction() const { return false; }
   /// Advances `world` by dt seconds (dt > 0) and reports what it did.
   virtual StepStats step(World& world, double dt) = 0;
 };

@@ -3,6 +3,7 @@
 #include "boxsim/impulse_damped/contact_gathering.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstring>
@@ -185,6 +186,7 @@ bool ContactGathering::predictedContact(const World& world, const CachedPair& pa
   const double wa2 = a.omega.squaredNorm(), wb2 = b.omega.squaredNorm();
   Vec3 sum = Vec3::Zero();
   int kept = 0;
+  std::array<bool, 4> keptPoint{};
   double deepest = 0.0;
   for (int i = 0; i < pair.count; ++i) {
     const CachedPoint& p = pair.points[i];
@@ -194,6 +196,7 @@ bool ContactGathering::predictedContact(const World& world, const CachedPair& pa
                                (nwb * b.omega.dot(p.rb) - wb2 * p.nDotRb);
     const double depth = p.depth + dt * (linear + turning) + (0.5 * dt * dt) * centripetal;
     if (depth <= -margin) continue;
+    keptPoint[i] = true;
     deepest = kept == 0 ? depth : std::max(deepest, depth);
     sum += p.position;
     ++kept;
@@ -201,6 +204,12 @@ bool ContactGathering::predictedContact(const World& world, const CachedPair& pa
   if (kept == 0) return false;
   contact = pair.contact;
   contact.point = sum / static_cast<double>(kept);
+  if (!contact.friction.frictionless()) {
+    // The points COLLIDE acts at are the kept ones, about the new centroid.
+    contact.patch.count = 0;
+    for (int i = 0; i < pair.count; ++i)
+      if (keptPoint[i]) contact.patch.offsets[contact.patch.count++] = pair.points[i].position - contact.point;
+  }
   contact.depth = deepest;
   contact.ra = contact.point - a.s.x;
   contact.rb = contact.point - b.s.x;

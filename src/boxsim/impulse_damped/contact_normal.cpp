@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "boxsim/collision/contact_manifold.hpp"
 #include "boxsim/collision/separating_axis.hpp"
 
 namespace boxsim {
@@ -81,8 +82,20 @@ void ContactNormalTracker::remember(const World& world, const ContactManifold& m
 ImpulseContact ContactNormalTracker::contactOf(const World& world, const ContactManifold& m,
                                                bool record) {
   const Vec3 p = m.centroid();
-  ImpulseContact c{m.a,    m.b, p, m.normal, m.depth, Vec3(p - world.bodies[m.a].s.x),
-                   Vec3(p - world.bodies[m.b].s.x)};
+  const Friction friction = combinedFriction(world.bodies[m.a].friction, world.bodies[m.b].friction);
+  ImpulseContact c{m.a,
+                   m.b,
+                   p,
+                   m.normal,
+                   m.depth,
+                   Vec3(p - world.bodies[m.a].s.x),
+                   Vec3(p - world.bodies[m.b].s.x),
+                   friction,
+                   {}};
+  if (!friction.frictionless()) {
+    for (int k = 0; k < m.count; ++k) c.patch.offsets[c.patch.count++] = m.points[k].position - p;
+    c.patch.radius = contactPatchRadius(m);
+  }
   switch (model_) {
     case ContactNormalModel::SeparatingAxis:
       break;

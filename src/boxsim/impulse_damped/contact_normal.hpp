@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "boxsim/collision/contact.hpp"
+#include "boxsim/core/newtonian_impulse.hpp"
 #include "boxsim/core/world.hpp"
 #include "boxsim/impulse_damped/impulse_params.hpp"
 
@@ -27,6 +28,12 @@ struct ImpulseContact {
   Vec3 ra = Vec3::Zero();
   /// m: the same for b.
   Vec3 rb = Vec3::Zero();
+  /// The pair's Coulomb friction (combinedFriction of the bodies'); frictionless in the
+  /// thesis' scenes.
+  Friction friction;
+  /// With friction only: the contact patch about `point` (applyPatchFriction); empty for a
+  /// frictionless contact.
+  ContactPatch patch;
 };
 
 /// Signed distance of world point p from the surface of a box, m: negative inside. When

@@ -109,6 +109,8 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
     stats.contacts = sleeping_.restingContacts();
     return stats;
   }
+  // Friction's budget is the normal impulse of this step (applyFrictionImpulse).
+  frictionTotals_.clear();
   // The hooks run only when needed, so with both techniques off the step is A.2 as written.
   const bool hooked = sleeping || params_.plausibility.enabled;
   const BeforeCollide collisionHook = [this](World& w, ImpulseContact& c, const CollideCall& call) {
@@ -128,7 +130,7 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
         impulsePass(world, dt, world.restitution, GravityMode::VelocityPlusGravity,
                     GravityMode::VelocityNoGravity, margin, gathering_, stable_,
                     params_.dampCollidingBodies ? &touched : nullptr,
-                    hooked ? collisionHook : BeforeCollide{});
+                    hooked ? collisionHook : BeforeCollide{}, &frictionTotals_);
     stats.events += pass.impulses;
     ++stats.passes;
     // A pass that changed no body leaves the world as it found it: every later collision pass
@@ -141,7 +143,7 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
     stats.events += impulsePass(world, dt, -1.0 + static_cast<double>(i) / iterations,
                                 GravityMode::VelocityPlusGravity, GravityMode::VelocityPlusGravity,
                                 margin, gathering_, stable_, &touched,
-                                sleeping ? contactHook : BeforeCollide{})
+                                sleeping ? contactHook : BeforeCollide{}, &frictionTotals_)
                         .impulses;
   // L3: IntegrateObjectVelocities (sleeping bodies stand immovable and are skipped).
   integrateVelocities(world, dt);

@@ -12,6 +12,7 @@
 #include "boxsim/core/stepper.hpp"
 #include "boxsim/geometric_stability/geometric_stability.hpp"
 #include "boxsim/impulse_damped/contact_gathering.hpp"
+#include "boxsim/impulse_damped/friction_totals.hpp"
 #include "boxsim/impulse_damped/continuous_collision.hpp"
 #include "boxsim/impulse_damped/dampen_objects.hpp"
 #include "boxsim/impulse_damped/impulse_params.hpp"
@@ -65,6 +66,8 @@ class DampedIntegrationStepper final : public Stepper {
   /// thresholds, a supportNormalY outside (0, 1), or invalid plausibility parameters.
   explicit DampedIntegrationStepper(const DampedIntegrationParams& params = {});
   std::string name() const override { return "damped"; }
+  /// Coulomb friction at every contact (applyCoulombImpulse).
+  bool modelsFriction() const override { return true; }
   /// Every parameter, including "seed", the plausibility generator's seed.
   std::map<std::string, std::string> parameters() const override;
   /// \alg{A.2} DAMPEDINTEGRATION L1-L6 for one step of dt s, with sleeping bodies standing in
@@ -89,6 +92,7 @@ class DampedIntegrationStepper final : public Stepper {
   StepStats advance(World& world, double dt);
 
   DampedIntegrationParams params_;
+  FrictionTotals frictionTotals_;  ///< the step's impulses per contact point, for friction
   ContactGathering gathering_;
   VisualPlausibility plausibility_;
   std::vector<char> stable_;

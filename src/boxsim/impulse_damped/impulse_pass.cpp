@@ -35,21 +35,43 @@ Vec3 gravityVelocity(const World& world, GravityMode gravity, double dt) {
 
 /// A.2 L5-L8: both bodies get deltaV, then the Newtonian impulse at the contact; returns j.
 double impulseWithGravity(RigidBody& a, RigidBody& b, const ImpulseContact& contact,
-                          double restitution, const Vec3& deltaV) {
+                          double restitution, const Vec3& deltaV, FrictionTotals* totals,
+                          bool restarted) {
   addVelocity(a, deltaV);
   addVelocity(b, deltaV);
-  return applyNewtonianImpulse(a, b, contact.ra, contact.rb, contact.normal, restitution);
+  return contactImpulse(a, b, contact, restitution, totals, restarted);
 }
 }  // namespace
 
+double contactImpulse(RigidBody& a, RigidBody& b, const ImpulseContact& contact, double restitution,
+                      FrictionTotals* totals, bool restarted) {
+  if (contact.friction.frictionless())
+    return applyNewtonianImpulse(a, b, contact.ra, contact.rb, contact.normal, restitution);
+  FrictionSum alone;
+  FrictionSum& sum = totals ? totals->at(contact.a, contact.b) : alone;
+  // Friction first, on the budget of the passes before, so that the normal impulse, which
+  // keeps the bodies apart, has the last word (Catto 2005 orders them so too).
+  // A restarted contact's tipping is taken away by COLLIDE L11-L14 itself: no couple for it.
+  ContactPatch patch = contact.patch;
+  if (restarted) patch.count = 0;
+  applyPatchFriction(a, b, contact.ra, contact.rb, contact.normal, contact.friction, patch, sum);
+  const double j = applyNewtonianImpulse(a, b, contact.ra, contact.rb, contact.normal, restitution);
+  sum.normal = restarted ? std::max(sum.normal, j) : sum.normal + j;
+  return j;
+}
+
 double collide(World& world, const ImpulseContact& contact, double restitution, GravityMode gravity,
-               double dt, const std::vector<char>& stable) {
+               double dt, const std::vector<char>& stable, FrictionTotals* totals) {
   RigidBody& a = world.bodies[contact.a];
   RigidBody& b = world.bodies[contact.b];
   // A.2 L1-L8: the gravity trick, so a resting contact sees the velocity gravity is about to
   // add, then one contact point per collision and the Newtonian impulse there.
   const Vec3 deltaV = gravityVelocity(world, gravity, dt);
-  const double j = impulseWithGravity(a, b, contact, restitution, deltaV);
+  // A geometrically stable body's vertical momentum is reset below, so each pass's impulse on
+  // its contacts is a new estimate of the support, not an increment of it.
+  const auto isStable = [&](int i) { return !stable.empty() && stable[i] && !world.bodies[i].immovable; };
+  const double j = impulseWithGravity(a, b, contact, restitution, deltaV, totals,
+                                      isStable(contact.a) || isStable(contact.b));
   // A.2 L9-L10.
   addVelocity(a, -deltaV);
   addVelocity(b, -deltaV);
@@ -80,13 +102,14 @@ double collideImpulse(const World& world, const ImpulseContact& contact, double 
                       GravityMode gravity, double dt) {
   RigidBody a = world.bodies[contact.a];
   RigidBody b = world.bodies[contact.b];
-  return impulseWithGravity(a, b, contact, restitution, gravityVelocity(world, gravity, dt));
+  return impulseWithGravity(a, b, contact, restitution, gravityVelocity(world, gravity, dt), nullptr,
+                            false);
 }
 
 PassResult impulsePass(World& world, double dt, double restitution, GravityMode predict,
                        GravityMode impulseGravity, double margin, ContactGathering& gathering,
                        const std::vector<char>& stable, std::vector<char>* touched,
-                       const BeforeCollide& beforeCollide) {
+                       const BeforeCollide& beforeCollide, FrictionTotals* totals) {
   // L2-L3: integrateObjectPositions and gatherCollisions; L6, revertToOriginalPositions, too:
   // the contacts keep the lever arms of the poses they were found at.
   // DEVIATION(A.2 L4-L6): COLLIDE after the revert (contact_gathering.hpp, "Where COLLIDE acts").
@@ -101,7 +124,7 @@ PassResult impulsePass(World& world, double dt, double restitution, GravityMode 
     const BodyMomenta beforeA(world.bodies[c.a]), beforeB(world.bodies[c.b]);
     if (beforeCollide) beforeCollide(world, c, call);
     if (touched) (*touched)[c.a] = (*touched)[c.b] = 1;
-    if (collide(world, c, restitution, impulseGravity, dt, stable) > 0.0) ++result.impulses;
+    if (collide(world, c, restitution, impulseGravity, dt, stable, totals) > 0.0) ++result.impulses;
     if (watch)
       result.changed = !beforeA.same(world.bodies[c.a]) || !beforeB.same(world.bodies[c.b]);
   }

@@ -14,8 +14,20 @@
 #include "boxsim/core/world.hpp"
 #include "boxsim/impulse_damped/contact_gathering.hpp"
 #include "boxsim/impulse_damped/contact_normal.hpp"
+#include "boxsim/impulse_damped/friction_totals.hpp"
 
 namespace boxsim {
+
+/// The impulses of one contact between a and b (the contact's bodies, or stand-ins for them):
+/// the Newtonian impulse at the contact's lever arms ra, rb (\alg{A.2 L7-L8}: one point per
+/// collision); with friction, applyPatchFriction before it, on the pair's sums for the step
+/// from `totals` (a budget of this impulse alone when `totals` is null: nothing before it).
+/// The pair's budget grows by the normal impulse, or, when `restarted` (a geometrically stable
+/// body's vertical momentum is reset after every COLLIDE, \alg{A.2} COLLIDE L11-L14, so each
+/// pass's impulse is a new estimate of the same support), becomes the largest of them.
+/// \return the normal impulse, N s.
+double contactImpulse(RigidBody& a, RigidBody& b, const ImpulseContact& contact, double restitution,
+                      FrictionTotals* totals, bool restarted = false);
 
 /// COLLIDE(collision, restitution, gravity) of \alg{A.2}: with VelocityPlusGravity both bodies'
 /// velocities get g Δt added for the impulse and taken off after (L1-L6, L9-L10); the Newtonian
@@ -23,8 +35,10 @@ namespace boxsim {
 /// (L7-L8); then a geometrically stable body loses its vertical momentum and its tipping
 /// angular momentum (L11-L14). `stable` is empty or has one flag per body.
 /// \return the impulse magnitude applied, N s (0 when the bodies separate at the point).
+/// `totals` holds the step's impulses per contact point for friction (contactImpulse); it may
+/// be null for frictionless worlds.
 double collide(World& world, const ImpulseContact& contact, double restitution, GravityMode gravity,
-               double dt, const std::vector<char>& stable);
+               double dt, const std::vector<char>& stable, FrictionTotals* totals = nullptr);
 
 /// The relative normal speed at which the bodies of `contact` approach as COLLIDE with
 /// `gravity` sees it (\alg{A.2} COLLIDE L1-L6: under VelocityPlusGravity each movable body's
@@ -68,11 +82,12 @@ struct PassResult {
 /// contact_gathering.hpp, "Where COLLIDE acts"); `gathering` does
 /// the moving and gathering, exactly or to first order (contact_gathering.hpp). Bodies marked in
 /// `touched` (one flag per body, or empty) get their flag set when they take part in a contact.
-/// `beforeCollide`, when set, sees each contact just before its COLLIDE.
+/// `beforeCollide`, when set, sees each contact just before its COLLIDE; `totals`, the step's
+/// friction budget, goes to COLLIDE.
 PassResult impulsePass(World& world, double dt, double restitution, GravityMode predict,
                        GravityMode impulseGravity, double margin, ContactGathering& gathering,
                        const std::vector<char>& stable, std::vector<char>* touched = nullptr,
-                       const BeforeCollide& beforeCollide = {});
+                       const BeforeCollide& beforeCollide = {}, FrictionTotals* totals = nullptr);
 
 /// IntegrateObjectVelocities of \alg{A.2 L3} (and Guendelman et al.'s velocity update):
 /// P += Δt m g for every movable body; positions are not touched.

@@ -24,11 +24,14 @@ std::map<std::string, std::string> ImpulseStepper::parameters() const {
 
 StepStats ImpulseStepper::step(World& world, double dt) {
   StepStats stats;
+  // Friction's budget is the normal impulse of this step (applyFrictionImpulse).
+  frictionTotals_.clear();
   const double margin = params_.impulse.contactMargin * smallestHalfExtent(world);
   // 1. Collisions, at positions predicted with the velocities as they are.
   for (int i = 0; i < params_.impulse.collisionIterations; ++i)
     stats.events += impulsePass(world, dt, world.restitution, GravityMode::VelocityNoGravity,
-                                GravityMode::VelocityNoGravity, margin, gathering_, {})
+                                GravityMode::VelocityNoGravity, margin, gathering_, {}, nullptr,
+                                {}, &frictionTotals_)
                         .impulses;
   // 2. Velocities.
   integrateVelocities(world, dt);
@@ -37,10 +40,10 @@ StepStats ImpulseStepper::step(World& world, double dt) {
   for (int i = 1; i <= n; ++i)
     stats.events += impulsePass(world, dt, -1.0 + static_cast<double>(i) / n,
                                 GravityMode::VelocityNoGravity, GravityMode::VelocityNoGravity,
-                                margin, gathering_, {})
+                                margin, gathering_, {}, nullptr, {}, &frictionTotals_)
                         .impulses;
   // 4. Shock propagation.
-  if (params_.shockPropagation) stats.events += propagateShock(world, dt, margin, gathering_);
+  if (params_.shockPropagation) stats.events += propagateShock(world, dt, margin, gathering_, &frictionTotals_);
   // 5. Positions.
   predictPositions(world, dt, Vec3::Zero(), params_.impulse.integrator);
   gathering_.endStep();

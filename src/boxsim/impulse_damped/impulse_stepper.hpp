@@ -7,6 +7,7 @@
 
 #include "boxsim/core/stepper.hpp"
 #include "boxsim/impulse_damped/contact_gathering.hpp"
+#include "boxsim/impulse_damped/friction_totals.hpp"
 #include "boxsim/impulse_damped/impulse_params.hpp"
 
 namespace boxsim {
@@ -36,6 +37,8 @@ class ImpulseStepper final : public Stepper {
   /// A stepper with the given parameters; throws std::invalid_argument on iteration counts < 1.
   explicit ImpulseStepper(const ImpulseStepperParams& params = {});
   std::string name() const override { return "impulse"; }
+  /// Coulomb friction at every contact (applyCoulombImpulse).
+  bool modelsFriction() const override { return true; }
   std::map<std::string, std::string> parameters() const override;
   /// One step of Δt = dt s:
   /// 1. collisions: `collisionIterations` passes at positions predicted with the current
@@ -48,6 +51,7 @@ class ImpulseStepper final : public Stepper {
 
  private:
   ImpulseStepperParams params_;
+  FrictionTotals frictionTotals_;  ///< the step's impulses per contact point, for friction
   ContactGathering gathering_;
 };
 

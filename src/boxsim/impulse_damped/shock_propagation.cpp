@@ -38,7 +38,8 @@ std::vector<int> contactLevels(const World& world, const std::vector<ImpulseCont
   return level;
 }
 
-int propagateShock(World& world, double dt, double margin, ContactGathering& gathering) {
+int propagateShock(World& world, double dt, double margin, ContactGathering& gathering,
+                   FrictionTotals* totals) {
   std::vector<ImpulseContact>& contacts =
       gathering.begin(world, dt, GravityMode::VelocityNoGravity, margin);
   const std::vector<int> level = contactLevels(world, contacts);
@@ -53,7 +54,7 @@ int propagateShock(World& world, double dt, double margin, ContactGathering& gat
     RigidBody& b = world.bodies[c.b];
     double j = 0.0;
     if (level[c.a] == level[c.b]) {
-      j = applyNewtonianImpulse(a, b, c.ra, c.rb, c.normal, 0.0);
+      j = contactImpulse(a, b, c, 0.0, totals);
     } else {
       // The lower level has already been settled: it acts as if infinitely heavy. A copy with
       // zero inverse mass and inertia stands in for it, so only the upper body changes.
@@ -62,8 +63,7 @@ int propagateShock(World& world, double dt, double margin, ContactGathering& gat
       fixed.invMass = 0.0;
       fixed.Iinv.setZero();
       fixed.immovable = true;
-      j = aLower ? applyNewtonianImpulse(fixed, b, c.ra, c.rb, c.normal, 0.0)
-                 : applyNewtonianImpulse(a, fixed, c.ra, c.rb, c.normal, 0.0);
+      j = aLower ? contactImpulse(fixed, b, c, 0.0, totals) : contactImpulse(a, fixed, c, 0.0, totals);
     }
     if (j > 0.0) ++impulses;
   }

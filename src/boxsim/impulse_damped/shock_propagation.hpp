@@ -9,6 +9,7 @@
 
 #include "boxsim/core/world.hpp"
 #include "boxsim/impulse_damped/contact_gathering.hpp"
+#include "boxsim/impulse_damped/friction_totals.hpp"
 
 namespace boxsim {
 
@@ -21,7 +22,9 @@ std::vector<int> contactLevels(const World& world, const std::vector<ImpulseCont
 /// (x + Δt v): contacts sorted by level (then by the height of their point, then by index); a
 /// contact between levels is resolved with restitution 0 and the lower body held fixed, a
 /// contact within a level as usual. Positions are restored afterwards; momenta keep the change.
+/// Friction draws on `totals`, the step's impulses per contact point (contactImpulse).
 /// \return the number of impulses applied.
-int propagateShock(World& world, double dt, double margin, ContactGathering& gathering);
+int propagateShock(World& world, double dt, double margin, ContactGathering& gathering,
+                   FrictionTotals* totals = nullptr);
 
 }  // namespace boxsim

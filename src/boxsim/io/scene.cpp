@@ -59,6 +59,8 @@ class Node {
   bool has(const char* key) const { return value_.contains(key); }
   Node at(const char* key) const { return Node(value_.at(key), path_ + "/" + key, source_); }
 
+  bool isObject() const { return value_.is_object(); }
+
   void requireObject(const std::string& what) const {
     if (!value_.is_object()) fail("expected " + what + " (a JSON object)", "write { ... } here");
   }
@@ -205,10 +207,40 @@ Quat readOrientation(const Node& node) {
   return axisAngleDegrees(axis, angle);
 }
 
+/// Largest friction coefficient a scene may give: far above real materials (rubber on
+/// concrete is about 1), and where μ g Δt stays a small velocity change per step.
+constexpr double kMaxFriction = 10.0;
+
+/// A "friction" value: μ (static and dynamic alike) or {"static": μs, "dynamic": μd}, each in
+/// [0, 10] with μd <= μs (Coulomb: sliding friction does not exceed sticking friction).
+Friction readFriction(const Node& node) {
+  const auto coefficient = [](const Node& n) {
+    const double mu = n.number();
+    if (mu < 0.0 || mu > kMaxFriction)
+      n.fail("a friction coefficient must lie in [0, " + shortestText(kMaxFriction) + "] (got " +
+                 shortestText(mu) + ")",
+             "use e.g. 0.5 (wood on wood) or 0 for the thesis' frictionless contact");
+    return mu;
+  };
+  if (!node.has("static") && !node.has("dynamic") && !node.isObject()) {
+    const double mu = coefficient(node);
+    return {mu, mu};
+  }
+  node.requireObject("a friction coefficient or {\"static\": 0.6, \"dynamic\": 0.5}");
+  node.allowKeys({"static", "dynamic"});
+  if (!node.has("static") || !node.has("dynamic"))
+    node.fail("give both \"static\" and \"dynamic\"", "write {\"static\": 0.6, \"dynamic\": 0.5}");
+  const Friction f{coefficient(node.at("static")), coefficient(node.at("dynamic"))};
+  if (f.muDynamic > f.muStatic)
+    node.at("dynamic").fail("the dynamic coefficient exceeds the static one",
+                            "make \"dynamic\" at most \"static\"");
+  return f;
+}
+
 void readBody(const Node& node, Scene& scene, std::set<std::string>& names) {
   node.requireObject("a body");
   node.allowKeys({"name", "half_extents", "mass", "position", "orientation", "velocity",
-                  "angular_velocity", "immovable", "launch_time"});
+                  "angular_velocity", "immovable", "launch_time", "friction"});
   if (!node.has("half_extents")) node.fail("missing \"half_extents\"", "add \"half_extents\": [0.5, 0.5, 0.5]");
   const Vec3 halfExtents = node.at("half_extents").positiveVec3(kSizeRange);
   const bool immovable = node.has("immovable") && node.at("immovable").boolean();
@@ -221,6 +253,7 @@ void readBody(const Node& node, Scene& scene, std::set<std::string>& names) {
       node.fail("missing \"mass\"", "add \"mass\" in kg, or \"immovable\": true");
     body = RigidBody::box(halfExtents, node.at("mass").positive(kMassRange));
   }
+  body.friction = node.has("friction") ? readFriction(node.at("friction")) : scene.friction;
   if (node.has("position")) body.s.x = node.at("position").vec3(kCoordinateRange);
   if (node.has("orientation")) body.s.q = readOrientation(node.at("orientation"));
   body.updateDerived();
@@ -258,7 +291,7 @@ void readBuilder(const Node& node, Scene& scene, std::set<std::string>& names) {
   const auto size = [&](double fallback) { return node.has("size") ? node.at("size").positive(kSizeRange) : fallback; };
   const auto mass = [&](double fallback) { return node.has("mass") ? node.at("mass").positive(kMassRange) : fallback; };
   if (type == "die") {
-    node.allowKeys({"type", "size", "mass", "position", "tilt_deg", "tilt_axis", "velocity", "angular_velocity"});
+    node.allowKeys({"type", "size", "mass", "position", "tilt_deg", "tilt_axis", "velocity", "angular_velocity", "friction"});
     DieSpec spec;
     spec.size = size(spec.size);
     spec.mass = mass(spec.mass);
@@ -269,7 +302,7 @@ void readBuilder(const Node& node, Scene& scene, std::set<std::string>& names) {
     if (node.has("angular_velocity")) spec.angularVelocity = node.at("angular_velocity").vec3(kAngularSpeedRange);
     addDie(scene.world, spec);
   } else if (type == "tower") {
-    node.allowKeys({"type", "count", "size", "mass", "origin", "gap"});
+    node.allowKeys({"type", "count", "size", "mass", "origin", "gap", "friction"});
     TowerSpec spec;
     if (node.has("count")) spec.count = node.at("count").count();
     if (node.has("count")) requireRoom("count", spec.count);
@@ -279,7 +312,7 @@ void readBuilder(const Node& node, Scene& scene, std::set<std::string>& names) {
     if (node.has("gap")) spec.gap = node.at("gap").nonNegative("m", &kCoordinateRange);
     addTower(scene.world, spec);
   } else if (type == "pyramid") {
-    node.allowKeys({"type", "base", "size", "mass", "origin", "gap"});
+    node.allowKeys({"type", "base", "size", "mass", "origin", "gap", "friction"});
     PyramidSpec spec;
     if (node.has("base")) spec.base = node.at("base").count();
     if (node.has("base")) requireRoom("base", 0.5 * spec.base * (spec.base + 1.0));
@@ -289,7 +322,7 @@ void readBuilder(const Node& node, Scene& scene, std::set<std::string>& names) {
     if (node.has("gap")) spec.gap = node.at("gap").nonNegative("m", &kCoordinateRange);
     addPyramid(scene.world, spec);
   } else if (type == "clump") {
-    node.allowKeys({"type", "count", "size", "mass", "spacing", "center", "speed", "spin", "seed"});
+    node.allowKeys({"type", "count", "size", "mass", "spacing", "center", "speed", "spin", "seed", "friction"});
     ClumpSpec spec;
     if (node.has("count")) spec.count = node.at("count").count();
     if (node.has("count")) requireRoom("count", spec.count);
@@ -311,7 +344,9 @@ void readBuilder(const Node& node, Scene& scene, std::set<std::string>& names) {
     node.at("type").fail("unknown builder type \"" + type + "\"",
                          "use one of die, tower, pyramid, clump");
   }
+  const Friction friction = node.has("friction") ? readFriction(node.at("friction")) : scene.friction;
   for (std::size_t i = before; i < scene.world.bodies.size(); ++i) {
+    scene.world.bodies[i].friction = friction;
     // Builders name their boxes by role ("tower_3"); a second builder of the same kind gets
     // the body index appended so that every name stays unique.
     std::string& name = scene.world.names[i];
@@ -402,7 +437,8 @@ Scene parseScene(const std::string& text, const std::string& source) {
   const Node top(root, "", scene.source);
   top.requireObject("a scene");
   top.allowKeys(
-      {"description", "gravity", "restitution", "broad_phase", "ground", "bodies", "builders"});
+      {"description", "gravity", "restitution", "friction", "broad_phase", "ground", "bodies",
+       "builders"});
   if (top.has("description")) scene.description = top.at("description").string();
   if (top.has("gravity")) scene.world.gravity = top.at("gravity").vec3(kGravityRange);
   if (top.has("restitution")) {
@@ -411,6 +447,7 @@ Scene parseScene(const std::string& text, const std::string& source) {
     if (scene.world.restitution < 0.0 || scene.world.restitution > 1.0)
       e.fail("restitution must lie in [0, 1]", "use 0.9 as the thesis (§3.3.2)");
   }
+  if (top.has("friction")) scene.friction = readFriction(top.at("friction"));
   if (top.has("broad_phase")) {
     const Node b = top.at("broad_phase");
     const std::string name = b.string();
@@ -426,11 +463,12 @@ Scene parseScene(const std::string& text, const std::string& source) {
   if (top.has("ground")) {
     const Node g = top.at("ground");
     g.requireObject("the ground {\"height\": 0, \"half_size\": 50, \"half_thickness\": 0.5}");
-    g.allowKeys({"height", "half_size", "half_thickness"});
+    g.allowKeys({"height", "half_size", "half_thickness", "friction"});
     const double height = g.has("height") ? g.at("height").bounded(kCoordinateRange) : 0.0;
     const double halfSize = g.has("half_size") ? g.at("half_size").positive(kSizeRange) : 50.0;
     const double halfThickness = g.has("half_thickness") ? g.at("half_thickness").positive(kSizeRange) : 0.5;
     const int ground = scene.world.addGround(height, halfSize, halfThickness);
+    scene.world.bodies[ground].friction = g.has("friction") ? readFriction(g.at("friction")) : scene.friction;
     scene.origins.push_back("/ground");
     names.insert(scene.world.names[ground]);
   }

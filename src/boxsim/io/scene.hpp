@@ -1,5 +1,5 @@
 /// \file
-/// Scene files: JSON describing the ground, gravity, restitution, the broad phase, bodies and
+/// Scene files: JSON describing the ground, gravity, restitution, friction, the broad phase, bodies and
 /// named builders.
 /// The schema is documented in docs/scene_format.md; every error names the file, the line and
 /// column (malformed JSON) or the JSON path (bad values), and what to change.
@@ -24,6 +24,8 @@ struct Scene {
   World world;  ///< the bodies, gravity, restitution and broad phase the scene describes
   std::string source;       ///< file name (or the name given to parseScene)
   std::string description;  ///< the scene's "description", if any
+  /// The scene's "friction": every body's and the ground's unless they give their own.
+  Friction friction;
   /// For each body of world, the JSON path it came from ("/bodies/0", "/builders/1 (tower
   /// box 3)", "/ground"), for error messages.
   std::vector<std::string> origins;
@@ -36,7 +38,8 @@ struct Scene {
 /// (masses in [1e-6, 1e6] kg; half extents, cube sizes, spacings and ground sizes in
 /// [1e-6, 1e6] m; coordinates and gaps, speeds, angular speeds and gravity of magnitude at
 /// most 1e6 m, m/s, rad/s and m/s²); quaternions non-zero; names free of white space and
-/// unique; "broad_phase", when given, "all_pairs" or "sweep_and_prune" (the default); no two
+/// unique; "friction" (scene, ground, body or builder) a coefficient in [0, 10] or
+/// {"static", "dynamic"} with dynamic <= static; "broad_phase", when given, "all_pairs" or "sweep_and_prune" (the default); no two
 /// boxes overlapping at the start (touching is allowed). Throws SceneError.
 Scene parseScene(const std::string& text, const std::string& source);
 

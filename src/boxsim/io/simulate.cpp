@@ -91,9 +91,20 @@ void requireFinite(const World& world, long step) {
 }
 }  // namespace
 
+void requireFrictionModel(const World& world, const Stepper& stepper) {
+  if (stepper.modelsFriction()) return;
+  for (std::size_t i = 0; i < world.bodies.size(); ++i)
+    if (!world.bodies[i].friction.frictionless())
+      throw std::invalid_argument(
+          "body '" + world.names[i] + "' has Coulomb friction, which the method '" + stepper.name() +
+          "' does not model (the thesis' techniques are frictionless). Fix: run it with "
+          "--method damped or --method impulse, or remove \"friction\" from the scene");
+}
+
 SimulateSummary simulate(World& world, Stepper& stepper, const SimulateOptions& options,
                          Recorder& recorder) {
   const long steps = checkedStepCount(options.dt, options.duration);
+  requireFrictionModel(world, stepper);
   if (recorder.keepsFrames()) checkRecordedPoses(steps, world.bodies.size());
   SimulateSummary summary;
   world.applyLaunches(0.0);

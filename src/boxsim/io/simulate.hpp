@@ -56,12 +56,17 @@ long checkedStepCount(double dt, double duration);
 /// that keeps its frames in memory. Throws std::invalid_argument naming the limit and the fix.
 void checkRecordedPoses(long steps, std::size_t bodyCount);
 
+/// Refuses a world with Coulomb friction (RigidBody::friction) under a technique that would
+/// ignore it (Stepper::modelsFriction): throws std::invalid_argument naming the first such body
+/// (by world.names), the method, and the fix (a method that models friction, or no friction).
+void requireFrictionModel(const World& world, const Stepper& stepper);
+
 /// Records the initial frame, then steps `stepper` n = checkedStepCount() times, recording a
 /// frame after each (frame k at t = k dt, computed from k so that time does not drift).
 /// Bodies waiting in world.launches are launched at the start of the step that begins at (or
 /// just after) their time.
 /// Throws std::invalid_argument as checkedStepCount() does (and checkRecordedPoses() when the
-/// recorder keeps its frames), and std::runtime_error naming the step and the body when a
+/// recorder keeps its frames, requireFrictionModel() for friction the method ignores), and std::runtime_error naming the step and the body when a
 /// body's state stops being finite.
 SimulateSummary simulate(World& world, Stepper& stepper, const SimulateOptions& options,
                          Recorder& recorder);
