@@ -35,7 +35,8 @@ struct PeerScene {
   Vec3 gravity = standardGravity();  ///< m/s^2
   double restitution = 0.9;      ///< Newtonian coefficient (boxsim's global one)
   /// Coulomb friction coefficient of every contact, for the engines that model friction.
-  /// boxsim's impulse methods are frictionless and damp sliding instead (\thesis{§5.2}).
+  /// boxsim runs frictionless as the thesis (its damping stands in, \thesis{§5.2}), and with
+  /// this friction as the "+friction" engines.
   double friction = 0.5;
   /// Each engine's own sleeping of bodies at rest: boxsim's computational stability
   /// (\thesis{§4.5}, damped integration only), Bullet's deactivation, ODE's auto-disable.

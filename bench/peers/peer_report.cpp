@@ -15,6 +15,9 @@ namespace boxsim::peers {
 namespace {
 
 constexpr const char* kBoxsim = "boxsim damped";
+/// The boxsim rows the summary and the aims speak of: the thesis' frictionless damped
+/// integration, and the same with the peers' Coulomb friction (the like-for-like row).
+constexpr const char* kBoxsimRows[] = {"boxsim damped", "boxsim damped μ"};
 
 std::string fixed(double value, int digits) {
   if (std::isnan(value)) return "–";
@@ -112,13 +115,16 @@ std::string tableRow(const SceneResults& scene, const RunResult& r) {
   return out.str();
 }
 
-/// Where boxsim damped integration is ahead of and behind the faster peer, in plain lists.
-std::string summary(const std::vector<SceneResults>& scenes) {
+/// Where one boxsim row (`engine`) is ahead of and behind the faster peer, in plain lists;
+/// empty when no scene has that row.
+std::string summaryOf(const std::vector<SceneResults>& scenes, const std::string& engine) {
   std::ostringstream ahead, behind, deeper, later;
+  bool present = false;
   for (const SceneResults& s : scenes) {
-    const RunResult* boxsim = find(s, kBoxsim);
+    const RunResult* boxsim = find(s, engine);
     const RunResult* peer = fasterPeer(s);
     if (!boxsim || !peer) continue;
+    present = true;
     const double ratio = boxsim->meanMs() / peer->meanMs();
     (ratio < 1 ? ahead : behind) << "- " << s.spec.label() << ": " << fixed(ratio, 2) << "× "
                                  << peer->engine << "'s mean\n";
@@ -133,13 +139,21 @@ std::string summary(const std::vector<SceneResults>& scenes) {
       later << "- " << s.spec.label() << ": " << seconds(boxsim->measures.allAsleepFrom)
             << " against Bullet's " << seconds(bullet->measures.allAsleepFrom) << " s\n";
   }
+  if (!present) return "";
   auto section = [](const std::string& title, const std::string& body) {
     return "**" + title + "**\n\n" + (body.empty() ? "- none\n" : body) + "\n";
   };
-  return section("boxsim damped is faster than the faster peer (its mean ms/step as a multiple of that peer's):", ahead.str()) +
-         section("boxsim damped is slower than the faster peer:", behind.str()) +
-         section("boxsim damped ends deeper in penetration than the best peer:", deeper.str()) +
-         section("boxsim damped has every box asleep later than Bullet, or never:", later.str());
+  return section(engine + " is faster than the faster peer (its mean ms/step as a multiple of that peer's):", ahead.str()) +
+         section(engine + " is slower than the faster peer:", behind.str()) +
+         section(engine + " ends deeper in penetration than the best peer:", deeper.str()) +
+         section(engine + " has every box asleep later than Bullet, or never:", later.str());
+}
+
+/// The summary of every boxsim row (kBoxsimRows) present.
+std::string summary(const std::vector<SceneResults>& scenes) {
+  std::string text;
+  for (const char* engine : kBoxsimRows) text += summaryOf(scenes, engine);
+  return text;
 }
 
 const SceneResults* sceneOf(const std::vector<SceneResults>& scenes, const std::string& base,
@@ -156,9 +170,10 @@ std::string aims(const std::vector<SceneResults>& scenes) {
   std::ostringstream out;
   const auto verdict = [](bool met) { return met ? "met" : "**missed**"; };
   const std::pair<const char*, double> piles[] = {{"clump1000", 0.0}, {"pile343", 0.0}, {"pile343", 0.9}};
+  for (const char* engine : kBoxsimRows)
   for (const auto& [base, e] : piles) {
     const SceneResults* s = sceneOf(scenes, base, e);
-    const RunResult* boxsim = s ? find(*s, kBoxsim) : nullptr;
+    const RunResult* boxsim = s ? find(*s, engine) : nullptr;
     const RunResult* peer = s ? fasterPeer(*s) : nullptr;
     if (!boxsim || !peer) continue;
     const double ratio = boxsim->meanMs() / peer->meanMs();
@@ -166,7 +181,7 @@ std::string aims(const std::vector<SceneResults>& scenes) {
     const RunResult* bullet = engineStarting(*s, "Bullet");
     const double mine = boxsim->measures.allAsleepFrom;
     const double theirs = bullet ? bullet->measures.allAsleepFrom : -1;
-    out << "- " << s->spec.label() << ": speed " << verdict(ratio <= 0.5) << " (" << fixed(ratio, 2)
+    out << "- " << engine << ", " << s->spec.label() << ": speed " << verdict(ratio <= 0.5) << " (" << fixed(ratio, 2)
         << "× " << peer->engine << "'s mean, aim ≤ 0.5); final penetration "
         << verdict(boxsim->measures.finalPenetration <= bestFinal) << " ("
         << fixed(1000 * boxsim->measures.finalPenetration, 1) << " mm, best peer "
@@ -174,12 +189,13 @@ std::string aims(const std::vector<SceneResults>& scenes) {
         << verdict(mine >= 0 && (theirs < 0 || mine <= theirs)) << " (" << seconds(mine)
         << ", Bullet " << seconds(theirs) << ")\n";
   }
+  for (const char* engine : kBoxsimRows)
   for (double e : {0.9, 0.0}) {
     const SceneResults* s = sceneOf(scenes, "clump10000", e);
-    const RunResult* boxsim = s ? find(*s, kBoxsim) : nullptr;
+    const RunResult* boxsim = s ? find(*s, engine) : nullptr;
     const RunResult* ode = s ? engineStarting(*s, "ODE") : nullptr;
     if (!boxsim || !ode) continue;
-    out << "- " << s->spec.label() << ": faster than ODE " << verdict(boxsim->meanMs() < ode->meanMs())
+    out << "- " << engine << ", " << s->spec.label() << ": faster than ODE " << verdict(boxsim->meanMs() < ode->meanMs())
         << " (" << ms(boxsim->meanMs()) << " against " << ms(ode->meanMs()) << " ms); "
         << fixed(boxsim->meanMs() / (1000.0 / 60.0), 1) << "× the 16.7 ms of 60 Hz\n";
   }
@@ -249,8 +265,10 @@ std::string markdownPage(const std::vector<SceneResults>& scenes, const RunSetup
   if (!setup.absent.empty()) out << "- not found at configure time: " << setup.absent << "\n";
   out << "\nFriction: Bullet and ODE run with Coulomb friction μ = " << fixed(scenes.empty() ? 0.5 : scenes.front().spec.friction, 2)
       << " on every contact (Bullet combines two bodies' coefficients by their product, so each "
-      << "body gets the square root); boxsim has no friction (its damping stands in for it, "
-      << "§5.2), so a sliding or tumbling box travels further under boxsim.\n";
+      << "body gets the square root). *boxsim damped* is the thesis' damped integration, "
+      << "frictionless (its damping stands in for friction, §5.2), so a sliding or tumbling box "
+      << "travels further under it; *boxsim damped μ* is the same with the peers' Coulomb "
+      << "friction on every box (the impulse chapter, \"Coulomb friction\").\n";
   return out.str();
 }
 

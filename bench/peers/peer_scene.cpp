@@ -44,9 +44,15 @@ namespace {
 /// boxsim itself, through the same Stepper interface the command line uses.
 class BoxsimEngine : public PeerEngine {
  public:
-  /// `engine` is a method, optionally with a contact gathering after a slash:
-  /// "damped/speculative".
-  explicit BoxsimEngine(const std::string& engine) {
+  /// `engine` is a method, optionally with a contact gathering after a slash
+  /// ("damped/every_pass"), optionally ending in "+friction": every body then gets the scene's
+  /// Coulomb friction, as the peers have it ("damped+friction").
+  explicit BoxsimEngine(std::string engine) {
+    const std::string plus = "+friction";
+    if (engine.size() > plus.size() && engine.compare(engine.size() - plus.size(), plus.size(), plus) == 0) {
+      friction_ = true;
+      engine.erase(engine.size() - plus.size());
+    }
     const std::size_t slash = engine.find('/');
     method_ = engine.substr(0, slash);
     if (slash != std::string::npos) {
@@ -56,17 +62,21 @@ class BoxsimEngine : public PeerEngine {
     stepper_ = makeStepper(method_, options_);  // refuses an unknown method now, not at load
   }
   std::string name() const override {
-    return "boxsim " + method_ + (gathering_.empty() ? "" : " " + gathering_);
+    return "boxsim " + method_ + (gathering_.empty() ? "" : " " + gathering_) + (friction_ ? " μ" : "");
   }
   std::string settings() const override {
     std::string text;
     for (const auto& [key, value] : stepper_->parameters())
       if (key == "integrator" || key == "sleep" || key == "contact_gathering")
         text += (text.empty() ? "" : ", ") + key + " " + value;
-    return (text.empty() ? "defaults" : text) + ", frictionless (damping stands in, §5.2)";
+    return (text.empty() ? "defaults" : text) +
+           (friction_ ? ", Coulomb friction as the peers (patch friction at each contact's centroid)"
+                      : ", frictionless as the thesis (damping stands in, §5.2)");
   }
   void load(const PeerScene& scene) override {
     world_ = scene.world;
+    if (friction_)
+      for (RigidBody& body : world_.bodies) body.friction = {scene.friction, scene.friction};
     // Sleeping (§4.5) belongs to damped integration alone; the other methods never sleep.
     if (method_ == "damped") {
       options_.sleep = scene.sleep;
@@ -90,6 +100,7 @@ class BoxsimEngine : public PeerEngine {
  private:
   std::string method_;
   std::string gathering_;  ///< empty: the method's default
+  bool friction_ = false;  ///< the scene's friction on every body
   TechniqueOptions options_;
   std::unique_ptr<Stepper> stepper_;
   World world_;

@@ -117,11 +117,11 @@ std::unique_ptr<PeerEngine> makeEngine(const std::string& name) {
   return makeBoxsimEngine(name);
 }
 
-/// The engines of one scene: those asked for, or by default boxsim damped integration and
-/// every peer found, with Bullet's CCD too where a box is launched.
+/// The engines of one scene: those asked for, or by default boxsim damped integration
+/// (frictionless as the thesis, and with the peers' friction) and every peer found, with Bullet's CCD too where a box is launched.
 std::vector<std::string> enginesOf(const SceneSpec& spec, const std::vector<std::string>& asked) {
   if (!asked.empty()) return asked;
-  std::vector<std::string> engines = {"damped"};
+  std::vector<std::string> engines = {"damped", "damped+friction"};
 #ifdef BOXSIM_HAVE_BULLET
   engines.push_back("bullet");
   if (spec.launches) engines.push_back("bullet/ccd");
@@ -184,13 +184,15 @@ int main(int argc, char** argv) {
   app.add_option("--scene", sceneNames, "Scene to run (repeatable; default: all)");
   app.add_option("--engine", engineNames,
                  "Engine (repeatable): a boxsim method (damped, impulse, ...), optionally with a "
-                 "contact gathering after a slash (damped/every_pass), bullet, bullet/ccd, ode "
-                 "(default: damped and every peer found, Bullet's CCD too on the shot pyramids)");
+                 "contact gathering after a slash (damped/every_pass), and '+friction' for the "
+                 "peers' Coulomb friction (damped+friction); bullet, bullet/ccd, ode (default: "
+                 "damped, damped+friction and every peer found, Bullet's CCD too on the shot "
+                 "pyramids)");
   app.add_option("--restitution", restitution, "Restitution of every scene (default: each scene's own)")
       ->check(CLI::Range(0.0, 1.0));
   app.add_option("--sleep", sleepText, "Sleeping of every engine, on or off (default: each scene's own)")
       ->check(CLI::IsMember({"on", "off"}));
-  app.add_option("--friction", friction, "Coulomb friction of the peers' contacts (boxsim has none)")
+  app.add_option("--friction", friction, "Coulomb friction of the peers' contacts and of boxsim's '+friction' engines")
       ->check(CLI::Range(0.0, 10.0));
   app.add_option("--reps", setup.reps, "Repetitions of every scene and engine, interleaved")
       ->check(CLI::Range(1, 100));

@@ -55,9 +55,9 @@ Mat3 crossMatrix(const Vec3& r) {
 }  // namespace
 
 namespace {
-/// The largest s in [0, 1] with s p inside the convex polygon q (2D, about a point inside it;
-/// `count` >= 3 vertices in any order), or, for 2 vertices, the point of the segment nearest
-/// to p along it (returned as the replacement of p).
+/// The largest s in [0, 1] with s p inside the convex polygon q (2D, its `count` >= 3 vertices
+/// in order around a point inside it, the origin), or, for 2 vertices, the point of the
+/// segment nearest to p along it (returned as the replacement of p).
 Eigen::Vector2d pressureCentreWithin(const Eigen::Vector2d& p, const std::array<Eigen::Vector2d, 4>& q,
                                      int count) {
   if (count == 2) {
@@ -65,14 +65,15 @@ Eigen::Vector2d pressureCentreWithin(const Eigen::Vector2d& p, const std::array<
     const double lo = std::min(q[0].dot(e), q[1].dot(e)), hi = std::max(q[0].dot(e), q[1].dot(e));
     return std::clamp(p.dot(e), lo, hi) * e;
   }
-  const std::array<int, 4> order = counterClockwiseOrder(q, count);
   double scale = 1.0;
   for (int k = 0; k < count; ++k) {
-    const Eigen::Vector2d& from = q[order[k]];
-    const Eigen::Vector2d& to = q[order[(k + 1) % count]];
-    const Eigen::Vector2d outward(to.y() - from.y(), from.x() - to.x());  // counter-clockwise
+    const Eigen::Vector2d& from = q[k];
+    const Eigen::Vector2d& to = q[(k + 1) % count];
+    // The edge's normal, turned to point away from the origin inside.
+    Eigen::Vector2d outward(to.y() - from.y(), from.x() - to.x());
+    if (outward.dot(from) < 0.0) outward = -outward;
     const double reach = outward.dot(p), limit = outward.dot(from);
-    if (reach > limit) scale = std::min(scale, std::max(0.0, limit) / reach);
+    if (reach > limit) scale = std::min(scale, limit / reach);
   }
   return scale * p;
 }
@@ -111,11 +112,16 @@ void applyPatchFriction(RigidBody& a, RigidBody& b, const Vec3& ra, const Vec3& 
   Eigen::Matrix<double, 6, 1> twist;
   twist << (b.v + b.omega.cross(rb)) - (a.v + a.omega.cross(ra)), b.omega - a.omega;
   const Vec5 slip = P.transpose() * twist;
+  // Nothing slides, spins or tips: the sums stand (the budget only ever grows).
+  if (slip.isZero(0.0)) return;
   Vec5 before;
   before << t1.dot(sum.tangential), t2.dot(sum.tangential), sum.torsional, t1.dot(sum.couple),
       t2.dot(sum.couple);
   // Sticking: the sums that stop every row.
-  Vec5 total = before - W.ldlt().solve(slip);
+  // W is symmetric positive definite (a pair's inverse mass restricted to independent rows).
+  const Eigen::LLT<Mat5> llt(W);
+  if (llt.info() != Eigen::Success) return;
+  Vec5 total = before - llt.solve(slip);
   if (!total.allFinite()) return;
   // Coulomb: (J_t, τ / ρ) within μs N, else on the ellipse of μd N.
   const double N = sum.normal;
@@ -124,7 +130,7 @@ void applyPatchFriction(RigidBody& a, RigidBody& b, const Vec3& ra, const Vec3& 
     total.head<3>() *= load > 0.0 ? friction.muDynamic * N / load : 0.0;
     // Sliding: the couple that stops the tipping under the friction as limited.
     const Eigen::Vector2d tip = slip.tail<2>() + W.block<2, 3>(3, 0) * (total.head<3>() - before.head<3>());
-    total.tail<2>() = before.tail<2>() - W.block<2, 2>(3, 3).ldlt().solve(tip);
+    total.tail<2>() = before.tail<2>() - W.block<2, 2>(3, 3).llt().solve(tip);
   }
   // The couple: its centre of pressure p = n × couple / N within the patch.
   if (tipping) {

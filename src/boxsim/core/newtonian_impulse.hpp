@@ -64,7 +64,8 @@ struct FrictionSum {
 
 /// The contact patch of a face contact, about its centroid.
 struct ContactPatch {
-  std::array<Vec3, 4> offsets{};  ///< m, the manifold's points minus the centroid; first `count`
+  /// m, the manifold's points minus the centroid, the first `count`, in order around the patch.
+  std::array<Vec3, 4> offsets{};
   int count = 0;                  ///< 0 to 4; 2 is a line of contact
   double radius = 0.0;            ///< m, mean distance from the centroid (contactPatchRadius)
 };

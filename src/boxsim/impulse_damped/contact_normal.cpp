@@ -3,6 +3,7 @@
 #include "boxsim/impulse_damped/contact_normal.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -93,7 +94,16 @@ ImpulseContact ContactNormalTracker::contactOf(const World& world, const Contact
                    friction,
                    {}};
   if (!friction.frictionless()) {
-    for (int k = 0; k < m.count; ++k) c.patch.offsets[c.patch.count++] = m.points[k].position - p;
+    // The points in order around the patch, as applyPatchFriction's couple limit walks them.
+    const Vec3 t1 = m.normal.unitOrthogonal();
+    const Vec3 t2 = m.normal.cross(t1);
+    std::array<Eigen::Vector2d, 4> plane;
+    for (int k = 0; k < m.count; ++k) {
+      const Vec3 d = m.points[k].position - p;
+      plane[k] = Eigen::Vector2d(d.dot(t1), d.dot(t2));
+    }
+    const std::array<int, 4> order = counterClockwiseOrder(plane, m.count);
+    for (int k = 0; k < m.count; ++k) c.patch.offsets[c.patch.count++] = m.points[order[k]].position - p;
     c.patch.radius = contactPatchRadius(m);
   }
   switch (model_) {
