@@ -36,6 +36,13 @@ inline bool sameBits(const Vec3& a, const Vec3& b) {
   return std::memcmp(a.data(), b.data(), 3 * sizeof(double)) == 0;
 }
 
+/// [r]×, the matrix of the cross product: crossMatrix(r) v = r × v.
+inline Eigen::Matrix3d crossMatrix(const Eigen::Vector3d& r) {
+  Eigen::Matrix3d m;
+  m << 0.0, -r.z(), r.y(), r.z(), 0.0, -r.x(), -r.y(), r.x(), 0.0;
+  return m;
+}
+
 /// The first `count` (at most 4) points of q, m, about a point inside their convex hull, in
 /// counter-clockwise order of their angle about it: the outline of a contact patch.
 std::array<int, 4> counterClockwiseOrder(const std::array<Eigen::Vector2d, 4>& q, int count);

@@ -45,13 +45,6 @@ double applyNewtonianImpulse(RigidBody& a, RigidBody& b, const Vec3& ra, const V
 }
 
 namespace {
-/// The cross-product matrix [r]× with [r]× v = r × v.
-Mat3 crossMatrix(const Vec3& r) {
-  Mat3 m;
-  m << 0.0, -r.z(), r.y(), r.z(), 0.0, -r.x(), -r.y(), r.x(), 0.0;
-  return m;
-}
-
 }  // namespace
 
 namespace {

@@ -6,12 +6,6 @@
 namespace boxsim {
 
 namespace {
-/// [r]×: the matrix of the cross product r × ·.
-Mat3 crossMatrix(const Vec3& r) {
-  Mat3 m;
-  m << 0.0, -r.z(), r.y(), r.z(), 0.0, -r.x(), -r.y(), r.x(), 0.0;
-  return m;
-}
 }  // namespace
 
 ConstraintJacobian::ConstraintJacobian(const World& world, const std::vector<PointConstraint>& points)

@@ -53,11 +53,9 @@ void dampMomenta(World& world, double dt, const std::vector<char>& touched,
     const double rotationalBefore = o.s.L.dot(o.omega);
     // A.2 L3-L5.
     // DEVIATION(A.2 L3-L5, L9): the rates k1-k3 are the thesis' stand-in for friction (§5.2,
-    // "friction slows things down"); a body with Coulomb friction has the real thing, and
-    // both together leave a frictional pile of 343 cubes with 430 mm of penetration and 37 J
-    // of motion after 8 s, where friction alone leaves 61 mm and 0.6 J (the chapter's
-    // "Coulomb friction"). The small-velocity tests below (L6-L21), which bring bodies to
-    // rest, stay.
+    // "friction slows things down"); a body with Coulomb friction has the real thing and skips
+    // them, so that friction is not counted twice. The small-velocity tests below (L6-L21),
+    // which bring bodies to rest, stay.
     const bool rates = o.friction.frictionless();
     const bool yAxisAligned = isYAxisAligned(o, params.alignedAngleDeg);
     if (rates) {
