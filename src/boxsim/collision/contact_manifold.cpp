@@ -389,19 +389,25 @@ double fanIntegral(const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
 }
 }  // namespace
 
+PatchOutline patchOutline(const ContactManifold& m, const Vec3& centre) {
+  PatchOutline outline;
+  const Vec3 t1 = m.normal.unitOrthogonal();
+  const Vec3 t2 = m.normal.cross(t1);
+  for (int i = 0; i < m.count; ++i) {
+    const Vec3 r = m.points[i].position - centre;
+    outline.points[i] = Eigen::Vector2d(r.dot(t1), r.dot(t2));
+  }
+  outline.count = m.count;
+  outline.order = counterClockwiseOrder(outline.points, m.count);
+  return outline;
+}
+
 double contactPatchRadius(const ContactManifold& m) {
   if (m.kind == AxisKind::EdgeEdge || m.count < 2) return 0.0;
   if (m.count == 2) return 0.25 * (m.points[1].position - m.points[0].position).norm();
-  const Vec3 c = m.centroid();
-  // The points in the contact plane, about the centroid, in order of angle.
-  const Vec3 t1 = m.normal.unitOrthogonal();
-  const Vec3 t2 = m.normal.cross(t1);
-  std::array<Eigen::Vector2d, 4> p;
-  for (int i = 0; i < m.count; ++i) {
-    const Vec3 r = m.points[i].position - c;
-    p[i] = Eigen::Vector2d(r.dot(t1), r.dot(t2));
-  }
-  const std::array<int, 4> order = counterClockwiseOrder(p, m.count);
+  const PatchOutline outline = patchOutline(m, m.centroid());
+  const std::array<Eigen::Vector2d, 4>& p = outline.points;
+  const std::array<int, 4>& order = outline.order;
   double integral = 0.0, area = 0.0;
   for (int k = 0; k < m.count; ++k) {
     const Eigen::Vector2d& a = p[order[k]];

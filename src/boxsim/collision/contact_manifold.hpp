@@ -4,6 +4,7 @@
 /// by the closest points of the two edges.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "boxsim/collision/contact.hpp"
@@ -41,6 +42,17 @@ std::vector<ContactPoint> contactArea(const Obb& a, const Obb& b, const Separati
 /// separatingAxisTest followed by buildContactManifold: the narrow phase for one pair.
 ContactManifold collideBoxes(const Obb& a, const Obb& b, double margin = 0.0,
                              const SeparatingAxisParams& params = {});
+
+/// A manifold's points seen along its normal: 2D coordinates about a centre along the tangents
+/// t1 = n.unitOrthogonal(), t2 = n × t1 (m), and the order of the points around the patch.
+struct PatchOutline {
+  std::array<Eigen::Vector2d, 4> points{};  ///< the first `count`, in the manifold's order
+  std::array<int, 4> order{};               ///< indices of `points` in order around the patch
+  int count = 0;
+};
+
+/// The outline of m's points about `centre` (a point inside the patch: its centroid).
+PatchOutline patchOutline(const ContactManifold& m, const Vec3& centre);
 
 /// The mean distance from the centroid of a contact patch of uniform pressure, m: the radius
 /// ρ at which a pressed patch resists spin about its normal (Coulomb torque up to μ N ρ). The

@@ -45,9 +45,6 @@ double applyNewtonianImpulse(RigidBody& a, RigidBody& b, const Vec3& ra, const V
 }
 
 namespace {
-}  // namespace
-
-namespace {
 /// The largest s in [0, 1] with s p inside the convex polygon q (2D, its `count` >= 3 vertices
 /// in order around a point inside it, the origin), or, for 2 vertices, the point of the
 /// segment nearest to p along it (returned as the replacement of p).

@@ -5,9 +5,6 @@
 
 namespace boxsim {
 
-namespace {
-}  // namespace
-
 ConstraintJacobian::ConstraintJacobian(const World& world, const std::vector<PointConstraint>& points)
     : world_(world), points_(points) {
   const int bodyCount = static_cast<int>(world.bodies.size());

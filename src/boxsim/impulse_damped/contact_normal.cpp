@@ -95,15 +95,8 @@ ImpulseContact ContactNormalTracker::contactOf(const World& world, const Contact
                    {}};
   if (!friction.frictionless()) {
     // The points in order around the patch, as applyPatchFriction's couple limit walks them.
-    const Vec3 t1 = m.normal.unitOrthogonal();
-    const Vec3 t2 = m.normal.cross(t1);
-    std::array<Eigen::Vector2d, 4> plane;
-    for (int k = 0; k < m.count; ++k) {
-      const Vec3 d = m.points[k].position - p;
-      plane[k] = Eigen::Vector2d(d.dot(t1), d.dot(t2));
-    }
-    const std::array<int, 4> order = counterClockwiseOrder(plane, m.count);
-    for (int k = 0; k < m.count; ++k) c.patch.offsets[c.patch.count++] = m.points[order[k]].position - p;
+    const PatchOutline outline = patchOutline(m, p);
+    for (int k = 0; k < m.count; ++k) c.patch.offsets[c.patch.count++] = m.points[outline.order[k]].position - p;
     c.patch.radius = contactPatchRadius(m);
   }
   switch (model_) {
