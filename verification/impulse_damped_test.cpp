@@ -11,6 +11,7 @@
 #include "boxsim/collision/separating_axis.hpp"
 #include "boxsim/impulse_damped/damped_integration.hpp"
 #include "boxsim/impulse_damped/dampen_objects.hpp"
+#include "boxsim/impulse_damped/fix_contact_constraints.hpp"
 #include "boxsim/impulse_damped/impulse_stepper.hpp"
 #include "boxsim/io/scene_builders.hpp"
 #include "test_worlds.hpp"
@@ -401,4 +402,40 @@ TEST_CASE("With continuous collision detection a cube at 150 and 200 m/s stops o
       }
     }
   }
+}
+
+TEST_CASE("FIXCONTACTCONSTRAINTS frees a box squeezed between two side neighbours by moving them apart",
+          "[impulse_damped][invariant]") {
+  // Three unit cubes in a row on the ground, the middle one 2 cm into each neighbour, its centre
+  // a hair higher so that A.2 calls it the upper body of both pairs.
+  const auto squeezed = [] {
+    World world = boxsim::testing::groundWorld();
+    for (double x : {-0.98, 0.0, 0.98}) {
+      RigidBody box = RigidBody::box(Vec3::Constant(0.5), 1.0);
+      box.s.x = Vec3(x, x == 0.0 ? 0.5001 : 0.5, 0.0);
+      box.updateDerived();
+      world.add(box, "box");
+    }
+    return world;
+  };
+  const auto deepestSide = [](const World& world) {
+    double deepest = 0.0;
+    for (const ContactManifold& m : findContacts(world))
+      if (std::abs(m.normal.y()) < 0.5) deepest = std::max(deepest, m.depth);
+    return deepest;
+  };
+  FixContactParams shared;  // the default: side contacts shared
+  REQUIRE(shared.sideShareAngleDeg > 0.0);
+  // One call is one Gauss-Seidel sweep over the contacts; steps repeat it.
+  World world = squeezed();
+  for (int step = 0; step < 20; ++step) fixContactConstraints(world, 0.0, shared, kDt);
+  // Within the slop (1 mm for unit cubes), the middle box where it was along x.
+  CHECK(deepestSide(world) <= shared.slop * 0.5 + 1e-9);
+  CHECK(std::abs(world.bodies[2].s.x.x()) < 1e-3);
+  // A.2 as written moves the upper (middle) box out of one neighbour into the other.
+  FixContactParams upperOnly;
+  upperOnly.sideShareAngleDeg = 0.0;
+  World thesis = squeezed();
+  for (int step = 0; step < 20; ++step) fixContactConstraints(thesis, 0.0, upperOnly, kDt);
+  CHECK(deepestSide(thesis) > 0.01);
 }

@@ -52,6 +52,7 @@ std::map<std::string, std::string> DampedIntegrationStepper::parameters() const 
       {"eps11_g_dt2_per_l", shortestText(d.rotationSnapEps)},
       {"eps1_nudge_per_l", shortestText(params_.fixContacts.nudge)},
       {"slop_per_l", shortestText(params_.fixContacts.slop)},
+      {"fix_side_share_deg", shortestText(params_.fixContacts.sideShareAngleDeg)},
       {"sleep", s.enabled ? "on" : "off"},
       {"sleep_time_s", shortestText(s.timeToSleep)},
       {"wake_speed_g_dt", shortestText(s.wakeSpeed)},

@@ -37,9 +37,13 @@ int fixContactConstraints(World& world, double margin, const FixContactParams& p
     const int lower = aUpper ? c.b : c.a;
     RigidBody& moving = world.bodies[upper];
     if (moving.immovable) continue;
+    RigidBody& other = world.bodies[lower];
     const Vec3 offset = aUpper ? Vec3(-c.normal) : Vec3(c.normal);
     const double ell = moving.halfExtents.minCoeff();
-    const Obb stable = Obb::of(world.bodies[lower]);
+    // FixContactParams::sideShareAngleDeg: a side contact between two movable bodies moves
+    // both apart, half a nudge each; the pair's relative motion per nudge is the same.
+    const bool share = params.sideShareAngleDeg > 0.0 && !other.immovable &&
+                       std::abs(c.normal.y()) < std::cos(params.sideShareAngleDeg * kPi / 180.0);
     // A.2 L6-L7: nudge while they still intersect (beyond the documented slop).
     const double slop = params.slop * ell;
     const double step = params.nudge * ell;  // m, the length of one nudge (|offset| = 1)
@@ -48,6 +52,7 @@ int fixContactConstraints(World& world, double margin, const FixContactParams& p
     long n = 0;
     while (n < limit) {
       const Obb box = Obb::of(moving);
+      const Obb stable = Obb::of(other);
       const SeparatingAxisResult sat = separatingAxisTest(box, stable);
       if (sat.depth <= slop) break;
       // One nudge, then more while the test before each is certain to find the pair still
@@ -56,7 +61,12 @@ int fixContactConstraints(World& world, double margin, const FixContactParams& p
       // loop stops where A.2 L6-L7 would.
       int k = 0;
       do {
-        moving.s.x += step * offset;  // x alone: nothing derived changes
+        if (share) {
+          moving.s.x += (0.5 * step) * offset;  // x alone: nothing derived changes
+          other.s.x -= (0.5 * step) * offset;
+        } else {
+          moving.s.x += step * offset;
+        }
         ++nudges;
         ++n;
         ++k;
