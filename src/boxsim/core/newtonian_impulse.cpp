@@ -78,30 +78,30 @@ void applyPatchFriction(RigidBody& a, RigidBody& b, const Vec3& ra, const Vec3& 
   const Vec3 t2 = n.cross(t1);
   const bool torsion = patch.radius > 0.0;
   const bool tipping = patch.count >= 2;
-  // The pair's inverse mass for a generalised impulse (J, A) (b: +J at x_b + rb and +A; a the
-  // opposite) against the relative twist (u, Ω) at the centroid:
-  // [[K, C], [Cᵀ, I_a⁻¹ + I_b⁻¹]] with K Mirtich's collision matrix and C = -[rb]× I_b⁻¹ - [ra]× I_a⁻¹.
-  const Mat3 Ra = crossMatrix(ra), Rb = crossMatrix(rb);
-  Eigen::Matrix<double, 6, 6> M;
-  M.topLeftCorner<3, 3>() = (a.invMass + b.invMass) * Mat3::Identity() - Ra * a.Iinv * Ra - Rb * b.Iinv * Rb;
-  M.topRightCorner<3, 3>() = -(Rb * b.Iinv) - Ra * a.Iinv;
-  M.bottomLeftCorner<3, 3>() = M.topRightCorner<3, 3>().transpose();
-  M.bottomRightCorner<3, 3>() = a.Iinv + b.Iinv;
-  // The rows friction works on: sliding along t1, t2, spin about n, tipping about t1, t2.
-  Eigen::Matrix<double, 6, 5> P = Eigen::Matrix<double, 6, 5>::Zero();
-  P.block<3, 1>(0, 0) = t1;
-  P.block<3, 1>(0, 1) = t2;
-  if (torsion) P.block<3, 1>(3, 2) = n;
+  // The five rows friction works on, as velocity Jacobians: row i reads
+  // L_i · (v_b - v_a) + G_b,i · ω_b - G_a,i · ω_a. Sliding along t1, t2 (L = t, G = r × t),
+  // spin about n and tipping about t1, t2 (L = 0, G = n, t1, t2); a row left out is zero.
+  Eigen::Matrix<double, 3, 5> Ga = Eigen::Matrix<double, 3, 5>::Zero();
+  Eigen::Matrix<double, 3, 5> Gb = Eigen::Matrix<double, 3, 5>::Zero();
+  Ga.col(0) = ra.cross(t1);
+  Ga.col(1) = ra.cross(t2);
+  Gb.col(0) = rb.cross(t1);
+  Gb.col(1) = rb.cross(t2);
+  if (torsion) Ga.col(2) = Gb.col(2) = n;
   if (tipping) {
-    P.block<3, 1>(3, 3) = t1;
-    P.block<3, 1>(3, 4) = t2;
+    Ga.col(3) = Gb.col(3) = t1;
+    Ga.col(4) = Gb.col(4) = t2;
   }
-  Mat5 W = P.transpose() * M * P;
+  // The pair's inverse mass in those rows: W = (1/m_a + 1/m_b) LᵀL + G_aᵀ I_a⁻¹ G_a + G_bᵀ I_b⁻¹ G_b.
+  Mat5 W = Ga.transpose() * (a.Iinv * Ga) + Gb.transpose() * (b.Iinv * Gb);
+  W(0, 0) += a.invMass + b.invMass;
+  W(1, 1) += a.invMass + b.invMass;
   for (int i = 2; i < 5; ++i)
-    if (P.col(i).isZero()) W(i, i) = 1.0;  // a row left out: its impulse stays 0
-  Eigen::Matrix<double, 6, 1> twist;
-  twist << (b.v + b.omega.cross(rb)) - (a.v + a.omega.cross(ra)), b.omega - a.omega;
-  const Vec5 slip = P.transpose() * twist;
+    if (Ga.col(i).isZero(0.0)) W(i, i) = 1.0;  // a row left out: its impulse stays 0
+  const Vec3 dv = b.v - a.v;
+  Vec5 slip = Gb.transpose() * b.omega - Ga.transpose() * a.omega;
+  slip(0) += t1.dot(dv);
+  slip(1) += t2.dot(dv);
   // Nothing slides, spins or tips: the sums stand (the budget only ever grows).
   if (slip.isZero(0.0)) return;
   Vec5 before;
@@ -138,15 +138,14 @@ void applyPatchFriction(RigidBody& a, RigidBody& b, const Vec3& ra, const Vec3& 
   // The kinetic energy changes by Δ · slip + ½ Δᵀ W Δ: an increment that would raise it waits.
   if (change.dot(slip) + 0.5 * change.dot(W * change) > 1e-12 * slip.squaredNorm() / W.norm()) return;
   const Vec3 J = change(0) * t1 + change(1) * t2;
-  const Vec3 A = change(2) * n + change(3) * t1 + change(4) * t2;
   if (!a.immovable) {
     a.s.P -= J;
-    a.s.L -= ra.cross(J) + A;
+    a.s.L -= Ga * change;
     a.updateVelocities();
   }
   if (!b.immovable) {
     b.s.P += J;
-    b.s.L += rb.cross(J) + A;
+    b.s.L += Gb * change;
     b.updateVelocities();
   }
   sum.tangential = total(0) * t1 + total(1) * t2;
