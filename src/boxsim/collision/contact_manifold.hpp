@@ -48,7 +48,7 @@ ContactManifold collideBoxes(const Obb& a, const Obb& b, double margin = 0.0,
 struct PatchOutline {
   std::array<Eigen::Vector2d, 4> points{};  ///< the first `count`, in the manifold's order
   std::array<int, 4> order{};               ///< indices of `points` in order around the patch
-  int count = 0;
+  int count = 0;                            ///< the manifold's point count, 0 to 4
 };
 
 /// The outline of m's points about `centre` (a point inside the patch: its centroid).
