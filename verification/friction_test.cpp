@@ -15,6 +15,7 @@
 #include "boxsim/impulse_damped/damped_integration.hpp"
 #include "boxsim/impulse_damped/impulse_stepper.hpp"
 #include "boxsim/io/scene.hpp"
+#include "boxsim/io/scene_builders.hpp"
 #include "boxsim/io/simulate.hpp"
 #include "boxsim/techniques.hpp"
 #include "seeded_random.hpp"
@@ -40,7 +41,7 @@ std::unique_ptr<Stepper> frictionStepper(const std::string& name) {
   return std::make_unique<DampedIntegrationStepper>(p);
 }
 
-/// A unit cube resting on a plane tilted by `degrees` about z (both with friction μ), and the
+/// A unit cube resting on a plane tilted by `degrees` (addIncline), the box's index and the
 /// unit vector down the slope.
 struct Incline {
   World world;
@@ -49,23 +50,9 @@ struct Incline {
 };
 
 Incline incline(double degrees, const Friction& friction) {
-  const double theta = degrees * kPi / 180.0;
-  const Vec3 n(-std::sin(theta), std::cos(theta), 0.0);
   Incline s;
-  s.down = -Vec3(std::cos(theta), std::sin(theta), 0.0);
-  RigidBody plane = RigidBody::immovableBox(Vec3(20.0, 0.5, 5.0));
-  plane.s.x = -0.5 * n;
-  plane.s.q = axisAngleDegrees(Vec3::UnitZ(), degrees);
-  plane.friction = friction;
-  plane.updateDerived();
-  RigidBody box = RigidBody::box(Vec3::Constant(0.5), 1.0);
-  box.s.x = 0.5 * n;
-  box.s.q = plane.s.q;
-  box.friction = friction;
-  box.updateDerived();
-  s.world.add(plane, "plane");
-  s.world.add(box, "box");
   s.world.restitution = 0.0;
+  s.box = addIncline(s.world, degrees, friction, &s.down);
   return s;
 }
 

@@ -35,6 +35,25 @@ int addDie(World& world, const DieSpec& spec) {
   return 1;
 }
 
+int addIncline(World& world, double degrees, const Friction& friction, Vec3* down) {
+  const double theta = degrees * kPi / 180.0;
+  const Vec3 n(-std::sin(theta), std::cos(theta), 0.0);  // the plank's upper face normal
+  const Quat q = axisAngleDegrees(Vec3::UnitZ(), degrees);
+  RigidBody plank = RigidBody::immovableBox(Vec3(20.0, 0.5, 5.0));
+  plank.s.x = -0.5 * n;
+  plank.s.q = q;
+  plank.friction = friction;
+  plank.updateDerived();
+  world.add(plank, "incline");
+  RigidBody box = cube(1.0, 1.0);
+  box.s.x = 0.5 * n;
+  box.s.q = q;
+  box.friction = friction;
+  box.updateDerived();
+  if (down) *down = -Vec3(std::cos(theta), std::sin(theta), 0.0);
+  return world.add(box, "box");
+}
+
 int addTower(World& world, const TowerSpec& spec) {
   requirePositiveCount(spec.count, "tower count");
   for (int i = 0; i < spec.count; ++i) {

@@ -93,6 +93,12 @@ int addBoxOnWiderBox(World& world, const Quat& topOrientation = Quat::Identity()
 /// each. Stable with both supports, not with the left alone. 1 kg each. Returns the count.
 int addBridge(World& world, bool withRightSupport = true);
 
+/// Beyond the thesis (Coulomb friction, impulse chapter): an immovable 40 × 1 × 10 m plank
+/// "incline" through the origin tilted by `degrees` about z (rising towards +x), and a unit
+/// cube "box" of 1 kg resting on it at rest, both with the given friction. Gravity is the
+/// world's, along −y. Returns the box's index; `down` receives the unit vector down the slope.
+int addIncline(World& world, double degrees, const Friction& friction, Vec3* down = nullptr);
+
 /// \thesis{Fig. 5.1}: five unit cubes of 1 kg named "A" to "E" in a row along x at
 /// x = 0, 1.2, 2.4, 3.6, 4.64 m (y = origin.y; gaps 0.2, 0.2, 0.2, 0.04 m), shifted by origin.
 /// A moves right at 144 m/s: in a 1/60 s frame it ends past B, overlapping C. D moves right at
