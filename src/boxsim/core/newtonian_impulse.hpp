@@ -66,6 +66,8 @@ struct FrictionSum {
 struct ContactPatch {
   /// m, the manifold's points minus the centroid, the first `count`, in order around the patch.
   std::array<Vec3, 4> offsets{};
+  /// The manifold point (ContactManifold::points index) each offset was made from.
+  std::array<int, 4> pointOf{};
   int count = 0;                  ///< 0 to 4; 2 is a line of contact
   double radius = 0.0;            ///< m, mean distance from the centroid (contactPatchRadius)
 };

@@ -60,7 +60,7 @@ class Stepper {
   virtual std::string workLimit() const { return {}; }
   /// Whether the technique models the Coulomb friction of RigidBody::friction. The thesis'
   /// techniques are frictionless (\thesis{§3.3.2}); impulse and damped integration add it
-  /// (core/newtonian_impulse.hpp, applyCoulombImpulse). A driver refuses a world with friction
+  /// (core/newtonian_impulse.hpp, applyPatchFriction). A driver refuses a world with friction
   /// under a technique that would ignore it (requireFrictionModel in io/simulate.hpp).
   virtual bool modelsFriction() const { return false; }
   /// Advances `world` by dt seconds (dt > 0) and reports what it did.

@@ -205,10 +205,16 @@ bool ContactGathering::predictedContact(const World& world, const CachedPair& pa
   contact = pair.contact;
   contact.point = sum / static_cast<double>(kept);
   if (!contact.friction.frictionless()) {
-    // The points COLLIDE acts at are the kept ones, about the new centroid.
+    // The friction patch is the kept points, about the new centroid, in the order around the
+    // patch that the found contact gave them (a subset of a convex outline stays one).
+    const ContactPatch& found = pair.contact.patch;
     contact.patch.count = 0;
-    for (int i = 0; i < pair.count; ++i)
-      if (keptPoint[i]) contact.patch.offsets[contact.patch.count++] = pair.points[i].position - contact.point;
+    for (int k = 0; k < found.count; ++k) {
+      const int i = found.pointOf[k];
+      if (!keptPoint[i]) continue;
+      contact.patch.offsets[contact.patch.count] = pair.points[i].position - contact.point;
+      contact.patch.pointOf[contact.patch.count++] = i;
+    }
   }
   contact.depth = deepest;
   contact.ra = contact.point - a.s.x;

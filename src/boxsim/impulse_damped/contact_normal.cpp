@@ -96,7 +96,11 @@ ImpulseContact ContactNormalTracker::contactOf(const World& world, const Contact
   if (!friction.frictionless()) {
     // The points in order around the patch, as applyPatchFriction's couple limit walks them.
     const PatchOutline outline = patchOutline(m, p);
-    for (int k = 0; k < m.count; ++k) c.patch.offsets[c.patch.count++] = m.points[outline.order[k]].position - p;
+    for (; c.patch.count < m.count; ++c.patch.count) {
+      const int i = outline.order[c.patch.count];
+      c.patch.offsets[c.patch.count] = m.points[i].position - p;
+      c.patch.pointOf[c.patch.count] = i;
+    }
     c.patch.radius = contactPatchRadius(m);
   }
   switch (model_) {

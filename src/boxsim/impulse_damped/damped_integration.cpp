@@ -110,7 +110,7 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
     stats.contacts = sleeping_.restingContacts();
     return stats;
   }
-  // Friction's budget is the normal impulse of this step (applyFrictionImpulse).
+  // Friction's budget is the normal impulse of this step (applyPatchFriction).
   frictionTotals_.clear();
   // The hooks run only when needed, so with both techniques off the step is A.2 as written.
   const bool hooked = sleeping || params_.plausibility.enabled;

@@ -66,7 +66,7 @@ class DampedIntegrationStepper final : public Stepper {
   /// thresholds, a supportNormalY outside (0, 1), or invalid plausibility parameters.
   explicit DampedIntegrationStepper(const DampedIntegrationParams& params = {});
   std::string name() const override { return "damped"; }
-  /// Coulomb friction at every contact (applyCoulombImpulse).
+  /// Coulomb friction at every contact (applyPatchFriction).
   bool modelsFriction() const override { return true; }
   /// Every parameter, including "seed", the plausibility generator's seed.
   std::map<std::string, std::string> parameters() const override;

@@ -1,6 +1,6 @@
 /// \file
 /// The impulses each touching pair has received in the current step: the budget of its Coulomb
-/// friction (applyFrictionImpulse in core/newtonian_impulse.hpp).
+/// friction (applyPatchFriction in core/newtonian_impulse.hpp).
 #pragma once
 
 #include <cstddef>

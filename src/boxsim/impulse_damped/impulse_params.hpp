@@ -158,7 +158,7 @@ struct FixContactParams {
   /// DEVIATION(A.2 L3-L5): with the upper body alone, a box squeezed between two side
   /// neighbours is pushed out of one into the other and back, and sinks into one of them step
   /// after step: the settling pile of 343 cubes at e = 0 ends 50 mm deep frictionless and
-  /// 61-631 mm with μ = 0.5; shared, 1.3 mm and 3.7-8.9 mm (impulse chapter, "The constants
+  /// 61-631 mm with μ = 0.5; shared, 1.3 mm and 3.0-8.9 mm (impulse chapter, "The constants
   /// of A.2").
   /// Towers, pyramids and the die are unchanged bit for bit (their side contacts are within
   /// the slop).

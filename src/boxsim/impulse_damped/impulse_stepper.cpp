@@ -24,7 +24,7 @@ std::map<std::string, std::string> ImpulseStepper::parameters() const {
 
 StepStats ImpulseStepper::step(World& world, double dt) {
   StepStats stats;
-  // Friction's budget is the normal impulse of this step (applyFrictionImpulse).
+  // Friction's budget is the normal impulse of this step (applyPatchFriction).
   frictionTotals_.clear();
   const double margin = params_.impulse.contactMargin * smallestHalfExtent(world);
   // 1. Collisions, at positions predicted with the velocities as they are.

@@ -37,7 +37,7 @@ class ImpulseStepper final : public Stepper {
   /// A stepper with the given parameters; throws std::invalid_argument on iteration counts < 1.
   explicit ImpulseStepper(const ImpulseStepperParams& params = {});
   std::string name() const override { return "impulse"; }
-  /// Coulomb friction at every contact (applyCoulombImpulse).
+  /// Coulomb friction at every contact (applyPatchFriction).
   bool modelsFriction() const override { return true; }
   std::map<std::string, std::string> parameters() const override;
   /// One step of Δt = dt s:

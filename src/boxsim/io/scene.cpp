@@ -222,7 +222,7 @@ Friction readFriction(const Node& node) {
              "use e.g. 0.5 (wood on wood) or 0 for the thesis' frictionless contact");
     return mu;
   };
-  if (!node.has("static") && !node.has("dynamic") && !node.isObject()) {
+  if (!node.isObject()) {
     const double mu = coefficient(node);
     return {mu, mu};
   }
