@@ -35,6 +35,12 @@ std::string shortestText(double value);
 inline bool sameBits(const Vec3& a, const Vec3& b) {
   return std::memcmp(a.data(), b.data(), 3 * sizeof(double)) == 0;
 }
+/// sameBits for 3×3 matrices.
+inline bool sameBits(const Mat3& a, const Mat3& b) {
+  return std::memcmp(a.data(), b.data(), 9 * sizeof(double)) == 0;
+}
+/// sameBits for numbers.
+inline bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; }
 
 /// [r]×, the matrix of the cross product: crossMatrix(r) v = r × v.
 inline Eigen::Matrix3d crossMatrix(const Eigen::Vector3d& r) {

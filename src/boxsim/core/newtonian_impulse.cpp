@@ -73,31 +73,57 @@ void applyPatchFriction(RigidBody& a, RigidBody& b, const Vec3& ra, const Vec3& 
                         const Friction& friction, const ContactPatch& patch, FrictionSum& sum) {
   if (a.immovable && b.immovable) return;
   using Vec5 = Eigen::Matrix<double, 5, 1>;
-  using Mat5 = Eigen::Matrix<double, 5, 5>;
-  const Vec3 t1 = n.unitOrthogonal();
-  const Vec3 t2 = n.cross(t1);
+  using Mat5 = FrictionRows::Mat5;
   const bool torsion = patch.radius > 0.0;
   const bool tipping = patch.count >= 2;
-  // The five rows friction works on, as velocity Jacobians: row i reads
-  // L_i · (v_b - v_a) + G_b,i · ω_b - G_a,i · ω_a. Sliding along t1, t2 (L = t, G = r × t),
-  // spin about n and tipping about t1, t2 (L = 0, G = n, t1, t2); a row left out is zero.
-  Eigen::Matrix<double, 3, 5> Ga = Eigen::Matrix<double, 3, 5>::Zero();
-  Eigen::Matrix<double, 3, 5> Gb = Eigen::Matrix<double, 3, 5>::Zero();
-  Ga.col(0) = ra.cross(t1);
-  Ga.col(1) = ra.cross(t2);
-  Gb.col(0) = rb.cross(t1);
-  Gb.col(1) = rb.cross(t2);
-  if (torsion) Ga.col(2) = Gb.col(2) = n;
-  if (tipping) {
-    Ga.col(3) = Gb.col(3) = t1;
-    Ga.col(4) = Gb.col(4) = t2;
+  FrictionRows& rows = sum.rows;
+  if (!(rows.valid && rows.torsion == torsion && rows.tipping == tipping &&
+        sameBits(rows.ra, ra) && sameBits(rows.rb, rb) && sameBits(rows.n, n) &&
+        sameBits(rows.IinvA, a.Iinv) && sameBits(rows.IinvB, b.Iinv) &&
+        sameBits(rows.invMassA, a.invMass) && sameBits(rows.invMassB, b.invMass))) {
+    rows.ra = ra;
+    rows.rb = rb;
+    rows.n = n;
+    rows.IinvA = a.Iinv;
+    rows.IinvB = b.Iinv;
+    rows.invMassA = a.invMass;
+    rows.invMassB = b.invMass;
+    rows.torsion = torsion;
+    rows.tipping = tipping;
+    rows.valid = true;
+    rows.t1 = n.unitOrthogonal();
+    rows.t2 = n.cross(rows.t1);
+    // The five rows friction works on, as velocity Jacobians: row i reads
+    // L_i · (v_b - v_a) + G_b,i · ω_b - G_a,i · ω_a. Sliding along t1, t2 (L = t, G = r × t),
+    // spin about n and tipping about t1, t2 (L = 0, G = n, t1, t2); a row left out is zero.
+    rows.Ga.setZero();
+    rows.Gb.setZero();
+    rows.Ga.col(0) = ra.cross(rows.t1);
+    rows.Ga.col(1) = ra.cross(rows.t2);
+    rows.Gb.col(0) = rb.cross(rows.t1);
+    rows.Gb.col(1) = rb.cross(rows.t2);
+    if (torsion) rows.Ga.col(2) = rows.Gb.col(2) = n;
+    if (tipping) {
+      rows.Ga.col(3) = rows.Gb.col(3) = rows.t1;
+      rows.Ga.col(4) = rows.Gb.col(4) = rows.t2;
+    }
+    // The pair's inverse mass in those rows:
+    // W = (1/m_a + 1/m_b) LᵀL + G_aᵀ I_a⁻¹ G_a + G_bᵀ I_b⁻¹ G_b.
+    Mat5& W = rows.W;
+    W = rows.Ga.transpose() * (a.Iinv * rows.Ga) + rows.Gb.transpose() * (b.Iinv * rows.Gb);
+    W(0, 0) += a.invMass + b.invMass;
+    W(1, 1) += a.invMass + b.invMass;
+    for (int i = 2; i < 5; ++i)
+      if (rows.Ga.col(i).isZero(0.0)) W(i, i) = 1.0;  // a row left out: its impulse stays 0
+    // W is symmetric positive definite (a pair's inverse mass restricted to independent rows).
+    rows.llt.compute(W);
+    rows.factorised = rows.llt.info() == Eigen::Success;
   }
-  // The pair's inverse mass in those rows: W = (1/m_a + 1/m_b) LᵀL + G_aᵀ I_a⁻¹ G_a + G_bᵀ I_b⁻¹ G_b.
-  Mat5 W = Ga.transpose() * (a.Iinv * Ga) + Gb.transpose() * (b.Iinv * Gb);
-  W(0, 0) += a.invMass + b.invMass;
-  W(1, 1) += a.invMass + b.invMass;
-  for (int i = 2; i < 5; ++i)
-    if (Ga.col(i).isZero(0.0)) W(i, i) = 1.0;  // a row left out: its impulse stays 0
+  const Vec3& t1 = rows.t1;
+  const Vec3& t2 = rows.t2;
+  const FrictionRows::Mat35& Ga = rows.Ga;
+  const FrictionRows::Mat35& Gb = rows.Gb;
+  const Mat5& W = rows.W;
   const Vec3 dv = b.v - a.v;
   Vec5 slip = Gb.transpose() * b.omega - Ga.transpose() * a.omega;
   slip(0) += t1.dot(dv);
@@ -108,10 +134,8 @@ void applyPatchFriction(RigidBody& a, RigidBody& b, const Vec3& ra, const Vec3& 
   before << t1.dot(sum.tangential), t2.dot(sum.tangential), sum.torsional, t1.dot(sum.couple),
       t2.dot(sum.couple);
   // Sticking: the sums that stop every row.
-  // W is symmetric positive definite (a pair's inverse mass restricted to independent rows).
-  const Eigen::LLT<Mat5> llt(W);
-  if (llt.info() != Eigen::Success) return;
-  Vec5 total = before - llt.solve(slip);
+  if (!rows.factorised) return;
+  Vec5 total = before - rows.llt.solve(slip);
   if (!total.allFinite()) return;
   // Coulomb: (J_t, τ / ρ) within μs N, else on the ellipse of μd N.
   const double N = sum.normal;

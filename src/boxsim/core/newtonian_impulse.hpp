@@ -6,6 +6,8 @@
 
 #include <array>
 
+#include <Eigen/Cholesky>
+
 #include "boxsim/core/rigid_body.hpp"
 
 namespace boxsim {
@@ -54,12 +56,34 @@ double applyNewtonianImpulse(RigidBody& a, RigidBody& b, const Vec3& p, const Ve
 double applyNewtonianImpulse(RigidBody& a, RigidBody& b, const Vec3& ra, const Vec3& rb,
                              const Vec3& n, double restitution);
 
+/// The five friction rows of a contact (applyPatchFriction) with the pair's inverse mass in
+/// them, factorised, and what they were computed from. Within a step a body's inverse inertia
+/// changes only with its mobility, and a cached contact keeps its lever arms from pass to pass,
+/// so the rows are rebuilt only when one of their inputs differs bitwise: the same bits as
+/// building them in every pass, without the 5×5 products and factorisation.
+struct FrictionRows {
+  using Mat35 = Eigen::Matrix<double, 3, 5>;
+  using Mat5 = Eigen::Matrix<double, 5, 5>;
+  // The inputs, compared bit for bit.
+  Vec3 ra = Vec3::Zero(), rb = Vec3::Zero(), n = Vec3::Zero();  ///< m, m, unit
+  Mat3 IinvA = Mat3::Zero(), IinvB = Mat3::Zero();             ///< 1/(kg m²)
+  double invMassA = 0.0, invMassB = 0.0;                        ///< 1/kg
+  bool torsion = false, tipping = false, valid = false;
+  // What follows from them.
+  Vec3 t1 = Vec3::Zero(), t2 = Vec3::Zero();  ///< the tangents, n.unitOrthogonal() and n × t1
+  Mat35 Ga = Mat35::Zero(), Gb = Mat35::Zero();  ///< angular Jacobians of the rows, m or 1
+  Mat5 W = Mat5::Zero();                       ///< the pair's inverse mass in the rows
+  Eigen::LLT<Mat5> llt;                        ///< W factorised
+  bool factorised = false;                     ///< llt succeeded
+};
+
 /// What a contact has received so far in a step: the budget and the state of its friction.
 struct FrictionSum {
   double normal = 0.0;             ///< N s, the normal impulses
   Vec3 tangential = Vec3::Zero();  ///< N s, the friction impulses (world vector)
   double torsional = 0.0;          ///< N m s, the friction's angular impulse about the normal
   Vec3 couple = Vec3::Zero();      ///< N m s, the tipping couple (in the contact plane)
+  FrictionRows rows;               ///< the rows of its last friction impulse
 };
 
 /// The contact patch of a face contact, about its centroid.

@@ -310,7 +310,7 @@ std::vector<ImpulseContact>& ContactGathering::gather(World& world, double dt, G
   // The predicted poses kept are for one g Δt and Δt (a shock propagation pass, say, predicts
   // with another): for others they, and the answers found with them, are forgotten.
   if (!sameBits(gravityStep, predictedGravity_) ||
-      std::memcmp(&dt, &predictedDt_, sizeof(double)) != 0) {
+      !sameBits(dt, predictedDt_)) {
     predictedGravity_ = gravityStep;
     predictedDt_ = dt;
     buildStamp_ = ++stampCounter_;
