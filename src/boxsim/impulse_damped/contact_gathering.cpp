@@ -112,12 +112,16 @@ void ContactGathering::buildCache(const World& world, const Vec3& gravityStep, d
   hi_.resize(n);
   halfDiagonal_.resize(n);
   slowReach_.resize(n);
+  passU_.resize(n);
+  passTurn_.resize(n);
+  passSpin_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const RigidBody& body = world.bodies[i];
     obbBounds(Obb::of(body), 0.0, lo_[i], hi_[i]);
     immovable_[i] = static_cast<char>(body.immovable);
     halfDiagonal_[i] = body.halfExtents.norm();
     slowReach_[i] = params_.exactReach * body.halfExtents.minCoeff();
+    setPassMotion(body, static_cast<int>(i), gravityStep, dt);
     if (body.immovable) continue;
     widening[i] = params_.slowWidening * body.halfExtents.minCoeff();
     if (reach(body, gravityStep, dt) > params_.exactReach * body.halfExtents.minCoeff())
@@ -129,16 +133,20 @@ void ContactGathering::buildCache(const World& world, const Vec3& gravityStep, d
   // (restingContactMargin) is wider by g Δt².
   sweepMargin_ = margin + world.gravity.norm() * dt * dt;
   guardScale_ = 1.0;
+  pairs_.clear();
+  pairKeys_.clear();
+  pairReach_.clear();
   sweepCandidates(world, gravityStep, dt);
   // One narrow phase at the current poses for the slow pairs, each body widened by more than a
   // slow body can move (slowWidening >= exactReach): the pairs the broad phase
   // gives with margin and widening, picked from the candidates (whose growth is at least the
   // widening) by the sweep's own test.
-  pairs_.clear();
   exactManifolds_.clear();
-  for (const Candidate& candidate : candidates_) {
+  for (Candidate& candidate : candidates_) {
     const int i = candidate.a, j = candidate.b;
-    if (fast_[i] || fast_[j]) continue;  // gathered as written, pass by pass
+    // Gathered as written, pass by pass, unless the two move together.
+    const bool together = params_.pairReach && movingTogether(i, j);
+    if ((fast_[i] || fast_[j]) && !together) continue;
     Vec3 loI, hiI, loJ, hiJ;
     obbBounds(Obb::of(world.bodies[i]), widening[i], loI, hiI);
     obbBounds(Obb::of(world.bodies[j]), widening[j], loJ, hiJ);
@@ -148,20 +156,31 @@ void ContactGathering::buildCache(const World& world, const Vec3& gravityStep, d
     // Closer than the margin along every axis, yet no point: boxes passing corner by corner.
     // The pair stays, with no points, and gets the exact narrow phase every pass.
     if (m.depth <= -pairMargin) continue;
+    // A pair with a fast body is predicted from its points only: with none, it is gathered
+    // as written.
+    if ((fast_[i] || fast_[j]) && m.count == 0) continue;
     m.a = i;
     m.b = j;
     const Vec3& xa = world.bodies[i].s.x;
     const Vec3& xb = world.bodies[j].s.x;
     // The normal model's choice now; its face is remembered only in the passes the pair touches.
     CachedPair pair{normals_.contactOf(world, m, false), m, {}, 0, false};
+    PairReach reachOf{i, j, 0};
     for (int k = 0; k < m.count; ++k) {
       const ContactPoint& p = m.points[k];
       const Vec3 ra = p.position - xa, rb = p.position - xb;
       pair.points[pair.count++] = CachedPoint{p.position, p.depth,       ra,          rb,
                                               ra.cross(m.normal), rb.cross(m.normal),
                                               m.normal.dot(ra),   m.normal.dot(rb)};
+      reachOf.deepest = k == 0 ? p.depth : std::max(reachOf.deepest, p.depth);
+      reachOf.leverA = std::max(reachOf.leverA, ra.norm());
+      reachOf.leverB = std::max(reachOf.leverB, rb.norm());
     }
+    reachOf.count = pair.count;
+    candidate.cached = static_cast<int>(pairs_.size());
     pairs_.push_back(pair);
+    pairKeys_.emplace_back(i, j);
+    pairReach_.push_back(reachOf);
   }
   ++narrowPhases_;
   // Every predicted pose and every candidate's answer is from before this build.
@@ -170,6 +189,35 @@ void ContactGathering::buildCache(const World& world, const Vec3& gravityStep, d
   manifolds_.clear();
   cacheMargin_ = margin;
   cached_ = true;
+}
+
+void ContactGathering::setPassMotion(const RigidBody& body, int i, const Vec3& gravityStep,
+                                     double dt) {
+  passU_[i] = body.immovable ? body.v : Vec3(body.v + gravityStep);
+  passSpin_[i] = body.omega.norm();
+  passTurn_[i] = dt * passSpin_[i] * halfDiagonal_[i];
+  passDt_ = dt;
+}
+
+bool ContactGathering::mayTouch(const PairReach& reach, double dt, double margin) const {
+  // A point's depth changes in the pass by n · (d_a - d_b) (predictedContact), at most
+  // Δt |v'_a - v'_b| + Δt |ω| |r| + Δt² |ω|² |r| for each body; the allowance relative to the
+  // terms, far above their rounding, keeps the answer what the computed depths would give.
+  const double wa = passSpin_[reach.a], wb = passSpin_[reach.b];
+  const double bound = dt * (passU_[reach.a] - passU_[reach.b]).norm() +
+                       dt * (wa * reach.leverA + wb * reach.leverB) +
+                       dt * dt * (wa * wa * reach.leverA + wb * wb * reach.leverB);
+  return reach.deepest + bound + 1e-12 * (std::abs(reach.deepest) + bound) > -margin;
+}
+
+bool ContactGathering::movingTogether(int a, int b) const {
+  return passDt_ * (passU_[a] - passU_[b]).norm() + passTurn_[a] + passTurn_[b] <=
+         std::min(slowReach_[a], slowReach_[b]);
+}
+
+bool ContactGathering::predictedTogether(const Candidate& candidate) const {
+  return candidate.cached >= 0 && pairs_[static_cast<std::size_t>(candidate.cached)].count > 0 &&
+         params_.pairReach && movingTogether(candidate.a, candidate.b);
 }
 
 bool ContactGathering::predictedContact(const World& world, const CachedPair& pair,
@@ -316,7 +364,8 @@ std::vector<ImpulseContact>& ContactGathering::gather(World& world, double dt, G
     buildStamp_ = ++stampCounter_;
   }
   // A.2 L2 for the fast bodies only: they go to their predicted poses, as written. A body fast
-  // when the cache was built stays fast for the step: the cache holds no pairs of its.
+  // when the cache was built stays fast for the step: the cache holds only its pairs that
+  // moved together then, predicted while they still do.
   const std::size_t n = world.bodies.size();
   moved_.assign(n, 0);
   placed_.assign(n, 0);
@@ -330,6 +379,7 @@ std::vector<ImpulseContact>& ContactGathering::gather(World& world, double dt, G
   motion_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const RigidBody& body = world.bodies[i];
+    setPassMotion(body, static_cast<int>(i), gravityStep, dt);
     if (body.immovable) continue;
     // Reach and guard test depend on v and ω alone (and on the guard): with both bitwise as in
     // the last pass they are what they were then.
@@ -390,6 +440,8 @@ std::vector<ImpulseContact>& ContactGathering::gather(World& world, double dt, G
     for (std::size_t k = 0; k < candidates_.size(); ++k) {
       const int a = candidates_[k].a, b = candidates_[k].b;
       if (!moved_[a] && !moved_[b]) continue;
+      // Two bodies moving together: predicted with the cached pairs below.
+      if (predictedTogether(candidates_[k])) continue;
       // A.2 L2 for a moved body's slow partner too, as written, so the narrow phase sees both
       // where the pass predicts them. It moves by at most its reach, so if its bounds stay
       // farther than that plus the margin from the moved body's, the pair cannot touch in the
@@ -472,17 +524,24 @@ std::vector<ImpulseContact>& ContactGathering::gather(World& world, double dt, G
   const auto keyOf = [](const ImpulseContact& contact) {
     return std::pair<int, int>(contact.a, contact.b);
   };
-  for (CachedPair& pair : pairs_) {
-    const std::pair<int, int> key(pair.contact.a, pair.contact.b);
+  for (std::size_t k = 0; k < pairs_.size(); ++k) {
+    const PairReach& reachOf = pairReach_[k];
+    const std::pair<int, int> key(reachOf.a, reachOf.b);
     for (; f < fastContacts_.size() && keyOf(fastContacts_[f]) < key; ++f)
       contacts_.push_back(fastContacts_[f]);
-    // No point to predict from: the narrow phase where the two slow bodies stand.
-    // A body that turned fast in this step: its pairs are among the fast ones now, and what
-    // they remember of the face comes after anything remembered before.
-    if (moved_[key.first] || moved_[key.second]) {
-      pair.remembered = false;
+    // A body that turned fast in this step: unless the two move together, its pairs are among
+    // the fast ones now, and what they remember of the face comes after anything remembered
+    // before.
+    if ((moved_[key.first] || moved_[key.second]) &&
+        !(reachOf.count > 0 && params_.pairReach && movingTogether(key.first, key.second))) {
+      pairs_[k].remembered = false;
       continue;
     }
+    // Too far apart for any point to come within the margin: no contact, as predictedContact
+    // would find, without reading the points.
+    if (reachOf.count > 0 && !mayTouch(reachOf, dt, margin)) continue;
+    CachedPair& pair = pairs_[k];
+    // No point to predict from: the narrow phase where the two slow bodies stand.
     if (pair.count == 0) {
       // Neither body moved since the first pass that looked: the narrow phase answers as then.
       if (pair.exact == kExactUnknown) {
@@ -517,6 +576,7 @@ bool ContactGathering::candidateManifold(const World& world, std::size_t k, doub
   const Obb a = passBox(world, candidate.a);
   const Obb b = passBox(world, candidate.b);
   // Apart last time, and still apart along the same axis: the full test would say so too.
+  ++passNarrowPhases_;
   if (candidate.apart && separatedBeyond(a, b, candidate.axis, margin)) return false;
   const SeparatingAxisResult sat = separatingAxisTest(a, b);
   manifold = buildContactManifold(a, b, sat, margin);

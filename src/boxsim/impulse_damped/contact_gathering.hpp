@@ -45,14 +45,23 @@
 ///     before COLLIDE, with velocities recomputed exactly as they were, so the slow pairs'
 ///     prediction and the impulses see every slow body in one place.
 ///
+///   - Pairs moving together (ImpulseParams::pairReach): a pair with a fast body whose two
+///     bodies move together, Δt |v'_a - v'_b| plus both turns Δt |ω| ρ within exactReach ℓ of
+///     the smaller, is cached and predicted as a slow pair is, if its narrow phase at the
+///     current poses has points. The prediction is exact for any translation the two share,
+///     so its error is bounded by their relative motion, not their speed: the cubes of a clump
+///     flying on together after they meet are predicted, not looked at in every pass.
+///     A pair that stops moving together in a pass (an impulse parted them) is gathered as
+///     written in that pass.
+///
 ///   Contacts of both kinds are ordered by pair, as EveryPass orders them. Speculative contacts
 ///   (Catto, "Speculative Contacts", GDC 2013) make the same first-order prediction. On a
 ///   resting stack every body is slow and a step costs one narrow phase instead of one per pass
 ///   (16 with the default iterations), which was most of its cost; in an impact the fast bodies
 ///   cost what they cost as written.
 ///
-///   DEVIATION(A.2 RESOLVECOLLISIONS L2-L3, RESOLVECONTACTS L2-L3): slow bodies are not moved to
-///   their predicted poses. The cache is rebuilt when a body's mobility changes (a sleeping
+///   DEVIATION(A.2 RESOLVECOLLISIONS L2-L3, RESOLVECONTACTS L2-L3): slow bodies, and fast
+///   pairs moving together, are not moved to their predicted poses. The cache is rebuilt when a body's mobility changes (a sleeping
 ///   body wakes, \thesis{§4.5}) and every step. A fast body's slow partner is moved only for
 ///   the narrow phase of its pairs with fast bodies. What differs from EveryPass: a slow pair's
 ///   depth by the rotation error above; the lever arm of an impulse in a slow pair by at most
@@ -174,6 +183,9 @@ class ContactGathering {
   ContactNormalTracker& normals() { return normals_; }
   /// Narrow phases run since construction (OncePerStep: cache builds), for tests and benches.
   long narrowPhases() const { return narrowPhases_; }
+  /// OncePerStep: narrow phases of pairs with a fast body at the poses of a pass, since
+  /// construction, for tests and benches.
+  long passNarrowPhases() const { return passNarrowPhases_; }
 
  private:
   /// One manifold point with the parts of its predicted depth that do not change in a step.
@@ -202,6 +214,16 @@ class ContactGathering {
     int exact = kExactUnknown;
   };
   static constexpr int kExactUnknown = -1;
+  /// What a pass reads of a cached pair before its points, kept apart from them (a CachedPair
+  /// is about a kilobyte, and most pairs of a pile stop here): its bodies and how near its
+  /// points can come.
+  struct PairReach {
+    int a, b;              ///< body indices, a < b
+    int count;             ///< its points
+    double deepest = 0.0;  ///< m, the largest depth of its points
+    double leverA = 0.0;   ///< m, the largest |r_a| of its points
+    double leverB = 0.0;   ///< m, the largest |r_b| of its points
+  };
 
   /// begin() without ImpulseParams::commonLeverPoint: the contacts with the lever arms of the
   /// poses they were found at.
@@ -211,6 +233,15 @@ class ContactGathering {
   /// Whether the cache was built for bodies of the same mobility as the world's now.
   bool cacheCovers(const World& world) const;
   void buildCache(const World& world, const Vec3& gravityStep, double dt, double margin);
+  /// Records body i's velocity of the pass, v' (v + g Δt when movable), and its turn Δt |ω| ρ
+  /// (m), for movingTogether.
+  void setPassMotion(const RigidBody& body, int i, const Vec3& gravityStep, double dt);
+  /// Whether bodies a and b move together in this pass: Δt |v'_a - v'_b| plus both turns
+  /// within exactReach ℓ of the smaller body (ImpulseParams::pairReach).
+  bool movingTogether(int a, int b) const;
+  /// Whether a point of the cached pair `reach` may come within `margin` (m) in this pass:
+  /// false only when predictedContact would find none.
+  bool mayTouch(const PairReach& reach, double dt, double margin) const;
   /// The Taylor-predicted contact of a cached pair of slow bodies; false when no point is
   /// within the margin.
   bool predictedContact(const World& world, const CachedPair& pair, const Vec3& gravityStep,
@@ -260,7 +291,12 @@ class ContactGathering {
     std::uint64_t stampA = 0, stampB = 0;
     /// The manifold found then (index into manifolds_), or -1: no contact within the margin.
     int manifold = -1;
+    /// The pair's entry in the cache (index into pairs_), or -1: not cached.
+    int cached = -1;
   };
+  /// Whether a candidate with a fast body is predicted from the cache in this pass: the
+  /// cache holds the pair with points, pairReach is on and the two move together.
+  bool predictedTogether(const Candidate& candidate) const;
 
   /// The bodies' bounds for the step's sweep sorted along x, so growCandidates finds a
   /// body's neighbours by one binary search and a scan of a slab instead of testing every
@@ -320,6 +356,12 @@ class ContactGathering {
   std::vector<char> placed_;     ///< per body: actually moved there (place), saved_ holds its pose
   bool cached_ = false;
   std::vector<CachedPair> pairs_;
+  std::vector<std::pair<int, int>> pairKeys_;  ///< (a, b) of pairs_, in its (increasing) order
+  std::vector<PairReach> pairReach_;  ///< per entry of pairs_: PairReach
+  std::vector<Vec3> passU_;       ///< m/s, per body: v' of this pass (setPassMotion)
+  std::vector<double> passTurn_;  ///< m, per body: Δt |ω| ρ of this pass
+  std::vector<double> passSpin_;  ///< rad/s, per body: |ω| of this pass
+  double passDt_ = 0.0;           ///< s, the Δt of passU_ and passTurn_
   std::vector<char> immovable_;   ///< each body's mobility when the cache was built
   std::vector<char> fast_;        ///< per body: fast when the cache was built, so not in it
   double cacheMargin_ = 0.0;
@@ -327,6 +369,7 @@ class ContactGathering {
   /// restingContactMargin adds, so stepPairs covers FIXCONTACTCONSTRAINTS' contacts too.
   double sweepMargin_ = 0.0;
   long narrowPhases_ = 0;
+  long passNarrowPhases_ = 0;
   /// The sweep's pairs in increasing (a, b) order, then those growCandidates added since, in
   /// the order it added them.
   std::vector<Candidate> candidates_;

@@ -97,6 +97,11 @@ struct ImpulseParams {
   /// a speed of 0.6 m/s at 60 Hz, above the 2 g Δt (0.33 m/s) a resting box chatters with,
   /// far below an impact.
   double exactReach = 0.02;
+  /// OncePerStep: a pair with a fast body whose two bodies move together, Δt |v'_a - v'_b|
+  /// plus both turns Δt |ω| ρ within exactReach ℓ (of the smaller body), is predicted like a
+  /// pair of slow bodies (contact_gathering.hpp, "Pairs moving together"). false: every pair
+  /// with a fast body gets the exact narrow phase in every pass.
+  bool pairReach = true;
 };
 
 /// Constants of DAMPENOBJECTS (\alg{A.2}), in the scaled units of this file's introduction.

@@ -153,6 +153,7 @@ std::map<std::string, std::string> impulseParameters(const ImpulseParams& params
           {"contact_gathering", contactGatheringName(params.gathering)},
           {"slow_widening_per_l", shortestText(params.slowWidening)},
           {"exact_reach_per_l", shortestText(params.exactReach)},
+          {"pair_reach", params.pairReach ? "on" : "off"},
           {"common_lever_point", params.commonLeverPoint ? "on" : "off"},
           {"integrator", integratorName(params.integrator)}};
 }

@@ -97,9 +97,16 @@ void ContactGathering::sweepCandidates(const World& world, const Vec3& gravitySt
   guardIndex_.valid = false;
   guardIndex_.regrown.clear();
   sweptKeys_ = candidatePairs(world, guardLo_, guardHi_, sweepMargin_);
+  // The cached pairs among them (both lists in increasing (a, b) order): a sweep within the
+  // step keeps the cache, which still names its pairs.
+  std::size_t cached = 0;
   for (const auto& [i, j] : sweptKeys_) {
     candidates_.push_back(Candidate{i, j, SeparatingAxisResult{}, false});
     hasCandidate_[i] = hasCandidate_[j] = 1;
+    for (; cached < pairKeys_.size() && pairKeys_[cached] < std::pair<int, int>(i, j); ++cached) {
+    }
+    if (cached < pairKeys_.size() && pairKeys_[cached] == std::pair<int, int>(i, j))
+      candidates_.back().cached = static_cast<int>(cached);
   }
 }
 
