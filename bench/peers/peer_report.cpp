@@ -202,6 +202,24 @@ std::string aims(const std::vector<SceneResults>& scenes) {
   return out.str().empty() ? "" : "**Dense-pile aims** (the project's targets for damped integration on piles):\n\n" + out.str() + "\n";
 }
 
+/// The peak resident sets measured (RunResult::peakRssKiB), scene by scene.
+std::string memory(const std::vector<SceneResults>& scenes) {
+  std::ostringstream out;
+  const auto mib = [](long kib) { return fixed(static_cast<double>(kib) / 1024.0, 1); };
+  for (const SceneResults& s : scenes)
+    for (const RunResult& r : s.runs)
+      if (r.peakRssKiB >= 0) {
+        out << "- " << s.spec.label() << ", " << r.engine << ": " << mib(r.peakRssKiB) << " MiB";
+        if (r.startRssKiB >= 0)
+          out << " (" << mib(r.peakRssKiB - r.startRssKiB) << " MiB above the same process "
+              << "stepping nothing, " << mib(r.startRssKiB) << " MiB)";
+        out << "\n";
+      }
+  if (out.str().empty()) return "";
+  return "**Peak memory** (the peak resident set of a fresh process running the scene once, "
+         "untimed, under one engine):\n\n" + out.str() + "\n";
+}
+
 }  // namespace
 
 std::string stamp(const std::string& sourceDir) {
@@ -252,7 +270,7 @@ std::string markdownPage(const std::vector<SceneResults>& scenes, const RunSetup
       << "rest (below " << kRestSpeed << " m/s and " << kRestSpin << " rad/s, whatever the engine "
       << "does); drift is the tower's top box's distance from its start, or the die's horizontal "
       << "travel.\n\n"
-      << "## Summary\n\n" << summary(scenes) << aims(scenes)
+      << "## Summary\n\n" << summary(scenes) << aims(scenes) << memory(scenes)
       << "## Table\n\n"
       << "| scene | boxes | engine | mean ms/step | median | p95 | rep means | mean ÷ boxsim damped's "
       << "| penetration mean / final / max (mm) | kinetic energy at end (J) | asleep at end "

@@ -6,6 +6,13 @@
 #include <cstdio>
 #include <limits>
 #include <numeric>
+#include <string>
+
+#if defined(__linux__)
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#endif
 
 #include "boxsim/collision/broad_phase.hpp"
 
@@ -126,6 +133,44 @@ void runRepetition(const SceneSpec& spec, PeerEngine& engine, double dt, RunResu
     m.drift = moved.norm();
   }
   result.measures = m;
+}
+
+void runOnce(const SceneSpec& spec, PeerEngine* engine, double dt) {
+  World world = spec.build();
+  world.restitution = spec.restitution;
+  PeerScene scene = peerSceneFromWorld(spec.label(), world, spec.duration);
+  scene.sleep = spec.sleep;
+  scene.friction = spec.friction;
+  if (!engine) return;
+  engine->load(scene);
+  const long steps = std::lround(spec.duration / dt);
+  for (long k = 1; k <= steps; ++k) engine->step(dt, static_cast<double>(k - 1) * dt);
+}
+
+long peakResidentKiB(const std::vector<std::string>& arguments) {
+#if defined(__linux__)
+  std::vector<char*> argv;
+  static char self[] = "/proc/self/exe";
+  argv.push_back(self);
+  std::vector<std::string> copies(arguments.begin() + (arguments.empty() ? 0 : 1), arguments.end());
+  for (std::string& a : copies) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  std::fflush(nullptr);
+  const pid_t child = fork();
+  if (child < 0) return -1;
+  if (child == 0) {
+    execv(self, argv.data());
+    _exit(127);
+  }
+  int status = 0;
+  rusage usage{};
+  if (wait4(child, &status, 0, &usage) != child || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    return -1;
+  return usage.ru_maxrss;  // KiB on Linux
+#else
+  (void)arguments;
+  return -1;
+#endif
 }
 
 }  // namespace boxsim::peers

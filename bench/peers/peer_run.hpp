@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,10 @@ struct RunResult {
   std::vector<double> stepMs;     ///< every step of every repetition, ms
   std::vector<double> repMeanMs;  ///< the mean step of each repetition, ms
   RunMeasures measures;
+  /// KiB: the peak resident set of a fresh process that ran the scene once under this engine
+  /// alone (peakResidentKiB); -1: not measured.
+  long peakRssKiB = -1;
+  long startRssKiB = -1;  ///< the same process with the scene built and no engine stepped
 
   double meanMs() const;    ///< over every step of every repetition
   double medianMs() const;  ///< over every step of every repetition
@@ -61,5 +66,14 @@ constexpr double kRestSpin = 0.02;   ///< rad/s
 /// Runs `spec` once under `engine` (a fresh engine per run) with steps of dt seconds; appends
 /// its step times to `result` and, on the first repetition, measures the physics.
 void runRepetition(const SceneSpec& spec, PeerEngine& engine, double dt, RunResult& result);
+
+/// Runs `spec` once under `engine` (nullptr: builds the scene and steps nothing), without
+/// timing or measuring: the work of a memory run (measurePeakMemory).
+void runOnce(const SceneSpec& spec, PeerEngine* engine, double dt);
+
+/// The peak resident set, KiB, of a fresh process running `arguments` (argv[0] is replaced by
+/// this program, read from /proc/self/exe), from the kernel's count for that child when it
+/// ends (getrusage); -1 where there is no fork and exec, or the child failed.
+long peakResidentKiB(const std::vector<std::string>& arguments);
 
 }  // namespace boxsim::peers

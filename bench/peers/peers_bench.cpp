@@ -141,6 +141,21 @@ SceneResults runScene(const SceneSpec& spec, const std::vector<std::string>& eng
       setup.settings[engine->name()] = engine->settings();
       runRepetition(spec, *engine, setup.dt, results.runs[i]);
     }
+  // The largest clump's memory: each engine in a fresh process of its own, and the same
+  // process stepping nothing for the part that is the scene and the program.
+  if (spec.base == "clump10000") {
+    const auto memoryRun = [&](const std::string& engine) {
+      return peakResidentKiB({"boxsim_peers", "--memory-run", engine, "--scene", spec.base,
+                              "--restitution", shortestText(spec.restitution), "--sleep",
+                              spec.sleep ? "on" : "off", "--friction", shortestText(spec.friction),
+                              "--memory-seconds", shortestText(spec.duration)});
+    };
+    const long idle = memoryRun("none");
+    for (std::size_t i = 0; i < engines.size(); ++i) {
+      results.runs[i].peakRssKiB = memoryRun(engines[i]);
+      results.runs[i].startRssKiB = idle;
+    }
+  }
   const RunResult* boxsim = nullptr;
   for (const RunResult& r : results.runs)
     if (r.engine == "boxsim damped") boxsim = &r;
@@ -200,7 +215,29 @@ int main(int argc, char** argv) {
   app.add_option("--scaling", scalingPath, "Write the scaling figure's data (the clumps at e = 0) here");
   app.add_option("--duration-scale", durationScale, "Multiply every scene's duration (0.1 for a quick look)")
       ->check(CLI::Range(1e-3, 100.0));
+  // A memory run (the comparison starts these itself): the one scene, once, under one engine
+  // ("none": the scene built, nothing stepped), untimed, for the peak resident set.
+  std::string memoryEngine;
+  double memorySeconds = 0.0;
+  app.add_option("--memory-run", memoryEngine)->group("");
+  app.add_option("--memory-seconds", memorySeconds)->group("");
   CLI11_PARSE(app, argc, argv);
+  if (!memoryEngine.empty()) {
+    try {
+      std::optional<bool> sleep;
+      if (!sleepText.empty()) sleep = sleepText == "on";
+      std::vector<SceneSpec> specs = chosenScenes(sceneNames, restitution, sleep, friction, 1.0);
+      if (specs.size() != 1) throw std::invalid_argument("a memory run takes exactly one scene");
+      specs.front().duration = memorySeconds;
+      std::unique_ptr<PeerEngine> engine;
+      if (memoryEngine != "none") engine = makeEngine(memoryEngine);
+      runOnce(specs.front(), engine.get(), setup.dt);
+    } catch (const std::exception& e) {
+      std::cerr << "boxsim_peers: error: " << e.what() << "\n";
+      return 2;
+    }
+    return 0;
+  }
 
   try {
     std::optional<bool> sleep;
