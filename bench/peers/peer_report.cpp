@@ -216,8 +216,8 @@ std::string memory(const std::vector<SceneResults>& scenes) {
         out << "\n";
       }
   if (out.str().empty()) return "";
-  return "**Peak memory** (the peak resident set of a fresh process running the scene once, "
-         "untimed, under one engine):\n\n" + out.str() + "\n";
+  return "**Peak memory** (the peak resident set, VmHWM, of a fresh process running the scene "
+         "once, untimed, under one engine):\n\n" + out.str() + "\n";
 }
 
 }  // namespace

@@ -6,11 +6,10 @@
 #include <cstdio>
 #include <limits>
 #include <numeric>
+#include <fstream>
 #include <string>
 
 #if defined(__linux__)
-#include <sys/resource.h>
-#include <sys/wait.h>
 #include <unistd.h>
 #endif
 
@@ -147,26 +146,37 @@ void runOnce(const SceneSpec& spec, PeerEngine* engine, double dt) {
   for (long k = 1; k <= steps; ++k) engine->step(dt, static_cast<double>(k - 1) * dt);
 }
 
-long peakResidentKiB(const std::vector<std::string>& arguments) {
-#if defined(__linux__)
-  std::vector<char*> argv;
-  static char self[] = "/proc/self/exe";
-  argv.push_back(self);
-  std::vector<std::string> copies(arguments.begin() + (arguments.empty() ? 0 : 1), arguments.end());
-  for (std::string& a : copies) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  std::fflush(nullptr);
-  const pid_t child = fork();
-  if (child < 0) return -1;
-  if (child == 0) {
-    execv(self, argv.data());
-    _exit(127);
+long peakResidentKiB() {
+  std::ifstream status("/proc/self/status");
+  std::string key;
+  while (status >> key) {
+    long value = -1;
+    if (key == "VmHWM:" && status >> value) return value;
+    status.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
   }
-  int status = 0;
-  rusage usage{};
-  if (wait4(child, &status, 0, &usage) != child || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    return -1;
-  return usage.ru_maxrss;  // KiB on Linux
+  return -1;
+}
+
+long peakResidentOfRun(const std::vector<std::string>& arguments) {
+#if defined(__linux__)
+  // The program's own path, then every argument quoted for the shell.
+  char self[4096];
+  const ssize_t length = readlink("/proc/self/exe", self, sizeof self - 1);
+  if (length <= 0) return -1;
+  self[length] = '\0';
+  std::string command;
+  for (const char* part : {"'", static_cast<const char*>(self), "'"}) command.append(part);
+  for (const std::string& argument : arguments) {
+    command.append(" '");
+    command.append(argument);
+    command.append("'");
+  }
+  std::fflush(nullptr);
+  FILE* run = popen(command.c_str(), "r");
+  if (!run) return -1;
+  long value = -1, last = -1;
+  while (std::fscanf(run, "%ld", &value) == 1) last = value;
+  return pclose(run) == 0 ? last : -1;
 #else
   (void)arguments;
   return -1;

@@ -71,9 +71,13 @@ void runRepetition(const SceneSpec& spec, PeerEngine& engine, double dt, RunResu
 /// timing or measuring: the work of a memory run (measurePeakMemory).
 void runOnce(const SceneSpec& spec, PeerEngine* engine, double dt);
 
-/// The peak resident set, KiB, of a fresh process running `arguments` (argv[0] is replaced by
-/// this program, read from /proc/self/exe), from the kernel's count for that child when it
-/// ends (getrusage); -1 where there is no fork and exec, or the child failed.
-long peakResidentKiB(const std::vector<std::string>& arguments);
+/// KiB: this process' peak resident set so far (VmHWM of /proc/self/status), or -1 where
+/// there is no such file.
+long peakResidentKiB();
+
+/// The peak resident set, KiB, of a fresh run of this program with `arguments` (after the
+/// program's name, which is read from /proc/self/exe), as that run reports it on its standard
+/// output (the last number it prints); -1 where it cannot be started or reports nothing.
+long peakResidentOfRun(const std::vector<std::string>& arguments);
 
 }  // namespace boxsim::peers

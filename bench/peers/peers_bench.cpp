@@ -145,7 +145,7 @@ SceneResults runScene(const SceneSpec& spec, const std::vector<std::string>& eng
   // process stepping nothing for the part that is the scene and the program.
   if (spec.base == "clump10000") {
     const auto memoryRun = [&](const std::string& engine) {
-      return peakResidentKiB({"boxsim_peers", "--memory-run", engine, "--scene", spec.base,
+      return peakResidentOfRun({"--memory-run", engine, "--scene", spec.base,
                               "--restitution", shortestText(spec.restitution), "--sleep",
                               spec.sleep ? "on" : "off", "--friction", shortestText(spec.friction),
                               "--memory-seconds", shortestText(spec.duration)});
@@ -232,6 +232,7 @@ int main(int argc, char** argv) {
       std::unique_ptr<PeerEngine> engine;
       if (memoryEngine != "none") engine = makeEngine(memoryEngine);
       runOnce(specs.front(), engine.get(), setup.dt);
+      std::cout << peakResidentKiB() << "\n";
     } catch (const std::exception& e) {
       std::cerr << "boxsim_peers: error: " << e.what() << "\n";
       return 2;
