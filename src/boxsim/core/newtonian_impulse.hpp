@@ -62,19 +62,25 @@ double applyNewtonianImpulse(RigidBody& a, RigidBody& b, const Vec3& ra, const V
 /// so the rows are rebuilt only when one of their inputs differs bitwise: the same bits as
 /// building them in every pass, without the 5×5 products and factorisation.
 struct FrictionRows {
-  using Mat35 = Eigen::Matrix<double, 3, 5>;
-  using Mat5 = Eigen::Matrix<double, 5, 5>;
-  // The inputs, compared bit for bit.
-  Vec3 ra = Vec3::Zero(), rb = Vec3::Zero(), n = Vec3::Zero();  ///< m, m, unit
-  Mat3 IinvA = Mat3::Zero(), IinvB = Mat3::Zero();             ///< 1/(kg m²)
-  double invMassA = 0.0, invMassB = 0.0;                        ///< 1/kg
-  bool torsion = false, tipping = false, valid = false;
-  // What follows from them.
-  Vec3 t1 = Vec3::Zero(), t2 = Vec3::Zero();  ///< the tangents, n.unitOrthogonal() and n × t1
-  Mat35 Ga = Mat35::Zero(), Gb = Mat35::Zero();  ///< angular Jacobians of the rows, m or 1
-  Mat5 W = Mat5::Zero();                       ///< the pair's inverse mass in the rows
-  Eigen::LLT<Mat5> llt;                        ///< W factorised
-  bool factorised = false;                     ///< llt succeeded
+  using Mat35 = Eigen::Matrix<double, 3, 5>;  ///< a 3×5 matrix: the rows' angular Jacobians
+  using Mat5 = Eigen::Matrix<double, 5, 5>;   ///< a 5×5 matrix: the rows' inverse mass
+  Vec3 ra = Vec3::Zero();            ///< input: lever arm of a, m
+  Vec3 rb = Vec3::Zero();            ///< input: lever arm of b, m
+  Vec3 n = Vec3::Zero();             ///< input: unit normal, a to b
+  Mat3 IinvA = Mat3::Zero();         ///< input: world inverse inertia of a, 1/(kg m²)
+  Mat3 IinvB = Mat3::Zero();         ///< input: world inverse inertia of b, 1/(kg m²)
+  double invMassA = 0.0;             ///< input: 1/m of a, 1/kg
+  double invMassB = 0.0;             ///< input: 1/m of b, 1/kg
+  bool torsion = false;              ///< input: the spin row is taken (patch radius > 0)
+  bool tipping = false;              ///< input: the tipping rows are taken (2 or more points)
+  bool valid = false;                ///< the fields below were computed from the inputs above
+  Vec3 t1 = Vec3::Zero();            ///< first tangent, n.unitOrthogonal()
+  Vec3 t2 = Vec3::Zero();            ///< second tangent, n × t1
+  Mat35 Ga = Mat35::Zero();          ///< angular Jacobian of the rows on a (columns: rows)
+  Mat35 Gb = Mat35::Zero();          ///< angular Jacobian of the rows on b
+  Mat5 W = Mat5::Zero();             ///< the pair's inverse mass in the rows
+  Eigen::LLT<Mat5> llt;              ///< W factorised
+  bool factorised = false;           ///< llt succeeded
 };
 
 /// What a contact has received so far in a step: the budget and the state of its friction.
