@@ -215,9 +215,8 @@ bool ContactGathering::movingTogether(int a, int b) const {
          std::min(slowReach_[a], slowReach_[b]);
 }
 
-bool ContactGathering::predictedTogether(const Candidate& candidate) const {
-  return candidate.cached >= 0 && pairs_[static_cast<std::size_t>(candidate.cached)].count > 0 &&
-         params_.pairReach && movingTogether(candidate.a, candidate.b);
+bool ContactGathering::predictedTogether(const PairReach& reach) const {
+  return reach.count > 0 && params_.pairReach && movingTogether(reach.a, reach.b);
 }
 
 bool ContactGathering::predictedContact(const World& world, const CachedPair& pair,
@@ -441,7 +440,8 @@ std::vector<ImpulseContact>& ContactGathering::gather(World& world, double dt, G
       const int a = candidates_[k].a, b = candidates_[k].b;
       if (!moved_[a] && !moved_[b]) continue;
       // Two bodies moving together: predicted with the cached pairs below.
-      if (predictedTogether(candidates_[k])) continue;
+      const int cached = candidates_[k].cached;
+      if (cached >= 0 && predictedTogether(pairReach_[static_cast<std::size_t>(cached)])) continue;
       // A.2 L2 for a moved body's slow partner too, as written, so the narrow phase sees both
       // where the pass predicts them. It moves by at most its reach, so if its bounds stay
       // farther than that plus the margin from the moved body's, the pair cannot touch in the
@@ -532,8 +532,7 @@ std::vector<ImpulseContact>& ContactGathering::gather(World& world, double dt, G
     // A body that turned fast in this step: unless the two move together, its pairs are among
     // the fast ones now, and what they remember of the face comes after anything remembered
     // before.
-    if ((moved_[key.first] || moved_[key.second]) &&
-        !(reachOf.count > 0 && params_.pairReach && movingTogether(key.first, key.second))) {
+    if ((moved_[key.first] || moved_[key.second]) && !predictedTogether(reachOf)) {
       pairs_[k].remembered = false;
       continue;
     }

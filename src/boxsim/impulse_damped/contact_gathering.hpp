@@ -239,6 +239,9 @@ class ContactGathering {
   /// Whether bodies a and b move together in this pass: Δt |v'_a - v'_b| plus both turns
   /// within exactReach ℓ of the smaller body (ImpulseParams::pairReach).
   bool movingTogether(int a, int b) const;
+  /// Whether a cached pair with a fast body is predicted from the cache in this pass, not
+  /// gathered as written: it has points, pairReach is on and its two bodies move together.
+  bool predictedTogether(const PairReach& reach) const;
   /// Whether a point of the cached pair `reach` may come within `margin` (m) in this pass:
   /// false only when predictedContact would find none.
   bool mayTouch(const PairReach& reach, double dt, double margin) const;
@@ -294,9 +297,6 @@ class ContactGathering {
     /// The pair's entry in the cache (index into pairs_), or -1: not cached.
     int cached = -1;
   };
-  /// Whether a candidate with a fast body is predicted from the cache in this pass: the
-  /// cache holds the pair with points, pairReach is on and the two move together.
-  bool predictedTogether(const Candidate& candidate) const;
 
   /// The bodies' bounds for the step's sweep sorted along x, so growCandidates finds a
   /// body's neighbours by one binary search and a scan of a slab instead of testing every
