@@ -222,10 +222,10 @@ int main(int argc, char** argv) {
   app.add_option("--memory-run", memoryEngine)->group("");
   app.add_option("--memory-seconds", memorySeconds)->group("");
   CLI11_PARSE(app, argc, argv);
+  std::optional<bool> sleep;
+  if (!sleepText.empty()) sleep = sleepText == "on";
   if (!memoryEngine.empty()) {
     try {
-      std::optional<bool> sleep;
-      if (!sleepText.empty()) sleep = sleepText == "on";
       std::vector<SceneSpec> specs = chosenScenes(sceneNames, restitution, sleep, friction, 1.0);
       if (specs.size() != 1) throw std::invalid_argument("a memory run takes exactly one scene");
       specs.front().duration = memorySeconds;
@@ -241,8 +241,6 @@ int main(int argc, char** argv) {
   }
 
   try {
-    std::optional<bool> sleep;
-    if (!sleepText.empty()) sleep = sleepText == "on";
     setup.command = commandLine(argc, argv);
     setup.absent = absentPeers();
     std::vector<SceneResults> results;
