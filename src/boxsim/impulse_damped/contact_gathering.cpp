@@ -134,7 +134,6 @@ void ContactGathering::buildCache(const World& world, const Vec3& gravityStep, d
   sweepMargin_ = margin + world.gravity.norm() * dt * dt;
   guardScale_ = 1.0;
   pairs_.clear();
-  pairKeys_.clear();
   pairReach_.clear();
   sweepCandidates(world, gravityStep, dt);
   // One narrow phase at the current poses for the slow pairs, each body widened by more than a
@@ -179,7 +178,6 @@ void ContactGathering::buildCache(const World& world, const Vec3& gravityStep, d
     reachOf.count = pair.count;
     candidate.cached = static_cast<int>(pairs_.size());
     pairs_.push_back(pair);
-    pairKeys_.emplace_back(i, j);
     pairReach_.push_back(reachOf);
   }
   ++narrowPhases_;
@@ -199,7 +197,8 @@ void ContactGathering::setPassMotion(const RigidBody& body, int i, const Vec3& g
   passDt_ = dt;
 }
 
-bool ContactGathering::mayTouch(const PairReach& reach, double dt, double margin) const {
+bool ContactGathering::mayTouch(const PairReach& reach, double margin) const {
+  const double dt = passDt_;
   // A point's depth changes in the pass by n · (d_a - d_b) (predictedContact), at most
   // Δt |v'_a - v'_b| + Δt |ω| |r| + Δt² |ω|² |r| for each body; the allowance relative to the
   // terms, far above their rounding, keeps the answer what the computed depths would give.
@@ -538,7 +537,7 @@ std::vector<ImpulseContact>& ContactGathering::gather(World& world, double dt, G
     }
     // Too far apart for any point to come within the margin: no contact, as predictedContact
     // would find, without reading the points.
-    if (reachOf.count > 0 && !mayTouch(reachOf, dt, margin)) continue;
+    if (reachOf.count > 0 && !mayTouch(reachOf, margin)) continue;
     CachedPair& pair = pairs_[k];
     // No point to predict from: the narrow phase where the two slow bodies stand.
     if (pair.count == 0) {

@@ -244,7 +244,7 @@ class ContactGathering {
   bool predictedTogether(const PairReach& reach) const;
   /// Whether a point of the cached pair `reach` may come within `margin` (m) in this pass:
   /// false only when predictedContact would find none.
-  bool mayTouch(const PairReach& reach, double dt, double margin) const;
+  bool mayTouch(const PairReach& reach, double margin) const;
   /// The Taylor-predicted contact of a cached pair of slow bodies; false when no point is
   /// within the margin.
   bool predictedContact(const World& world, const CachedPair& pair, const Vec3& gravityStep,
@@ -356,8 +356,8 @@ class ContactGathering {
   std::vector<char> placed_;     ///< per body: actually moved there (place), saved_ holds its pose
   bool cached_ = false;
   std::vector<CachedPair> pairs_;
-  std::vector<std::pair<int, int>> pairKeys_;  ///< (a, b) of pairs_, in its (increasing) order
-  std::vector<PairReach> pairReach_;  ///< per entry of pairs_: PairReach
+  /// Per entry of pairs_, in its order (increasing (a, b)): PairReach.
+  std::vector<PairReach> pairReach_;
   std::vector<Vec3> passU_;       ///< m/s, per body: v' of this pass (setPassMotion)
   std::vector<double> passTurn_;  ///< m, per body: Δt |ω| ρ of this pass
   std::vector<double> passSpin_;  ///< rad/s, per body: |ω| of this pass

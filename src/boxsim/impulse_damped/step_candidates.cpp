@@ -100,12 +100,15 @@ void ContactGathering::sweepCandidates(const World& world, const Vec3& gravitySt
   // The cached pairs among them (both lists in increasing (a, b) order): a sweep within the
   // step keeps the cache, which still names its pairs.
   std::size_t cached = 0;
+  const auto keyOf = [&](std::size_t k) {
+    return std::pair<int, int>(pairReach_[k].a, pairReach_[k].b);
+  };
   for (const auto& [i, j] : sweptKeys_) {
     candidates_.push_back(Candidate{i, j, SeparatingAxisResult{}, false});
     hasCandidate_[i] = hasCandidate_[j] = 1;
-    for (; cached < pairKeys_.size() && pairKeys_[cached] < std::pair<int, int>(i, j); ++cached) {
+    for (; cached < pairReach_.size() && keyOf(cached) < std::pair<int, int>(i, j); ++cached) {
     }
-    if (cached < pairKeys_.size() && pairKeys_[cached] == std::pair<int, int>(i, j))
+    if (cached < pairReach_.size() && keyOf(cached) == std::pair<int, int>(i, j))
       candidates_.back().cached = static_cast<int>(cached);
   }
 }
