@@ -338,6 +338,14 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
   return contacts;
 }
 
+void ContactGathering::beginStep(const World& world, double dt, GravityMode predict,
+                                 double margin) {
+  if (params_.gathering != ContactGatheringMode::OncePerStep) return;
+  const Vec3 gravityStep =
+      predict == GravityMode::VelocityPlusGravity ? Vec3(dt * world.gravity) : Vec3(Vec3::Zero());
+  if (margin != cacheMargin_ || !cacheCovers(world)) buildCache(world, gravityStep, dt, margin);
+}
+
 std::vector<ImpulseContact>& ContactGathering::gather(World& world, double dt, GravityMode predict,
                                                       double margin) {
   const Vec3 gravityStep =
@@ -375,10 +383,17 @@ std::vector<ImpulseContact>& ContactGathering::gather(World& world, double dt, G
   outgrown.clear();
   passReach_.assign(n, 0.0);
   motion_.resize(n);
+  // The bodies of settled islands sit this pass out (contact_islands.hpp): they would stand,
+  // move and touch as in the pass that settled them, and change nothing.
+  refreshIslands(world);
+  skip_.resize(n);
+  bool anySkipped = false;
   for (std::size_t i = 0; i < n; ++i) {
+    skip_[i] = static_cast<char>(islands_.settled(static_cast<int>(i)));
+    anySkipped = anySkipped || skip_[i];
+  }
+  const auto classify = [&](std::size_t i) {
     const RigidBody& body = world.bodies[i];
-    setPassMotion(body, static_cast<int>(i), gravityStep, dt);
-    if (body.immovable) continue;
     // Reach and guard test depend on v and ω alone (and on the guard): with both bitwise as in
     // the last pass they are what they were then.
     PassMotion& motion = motion_[i];
@@ -395,7 +410,7 @@ std::vector<ImpulseContact>& ContactGathering::gather(World& world, double dt, G
     }
     const double r = motion.reach;
     passReach_[i] = r;
-    if (!fast_[i] && r <= slowReach_[i]) continue;
+    if (!fast_[i] && r <= slowReach_[i]) return;
     fast.push_back(static_cast<int>(i));
     if (motion.guardStamp != guardStamp_[i]) {
       const Vec3 u = body.v + gravityStep;
@@ -403,11 +418,34 @@ std::vector<ImpulseContact>& ContactGathering::gather(World& world, double dt, G
       motion.guardStamp = guardStamp_[i];
     }
     if (!motion.withinGuard) outgrown.push_back(static_cast<int>(i));
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    setPassMotion(world.bodies[i], static_cast<int>(i), gravityStep, dt);
+    if (!world.bodies[i].immovable && !skip_[i]) classify(i);
   }
   // The step's candidates hold every pair that can come near while each body moves less than
   // its growth; one that outgrew it needs its pairs found afresh, from the poses the bodies
-  // stand at.
-  if (!outgrown.empty()) growCandidates(world, gravityStep, dt, outgrown);
+  // stand at. A pair found so may join a settled island to an active one, which takes it up
+  // again in this very pass.
+  while (!outgrown.empty()) {
+    growCandidates(world, gravityStep, dt, outgrown);
+    outgrown.clear();
+    if (!anySkipped) break;
+    refreshIslands(world);
+    anySkipped = false;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!skip_[i]) continue;
+      if (islands_.settled(static_cast<int>(i))) {
+        anySkipped = true;
+      } else {
+        skip_[i] = 0;
+        classify(i);
+      }
+    }
+  }
+  if (anySkipped)
+    for (std::size_t i = 0; i < n; ++i) skippedBodyPasses_ += skip_[i];
+  islands_.flatten();
   bool anyFast = false;
   for (int i : fast) {
     RigidBody& body = world.bodies[i];
@@ -528,6 +566,7 @@ std::vector<ImpulseContact>& ContactGathering::gather(World& world, double dt, G
     const std::pair<int, int> key(reachOf.a, reachOf.b);
     for (; f < fastContacts_.size() && keyOf(fastContacts_[f]) < key; ++f)
       contacts_.push_back(fastContacts_[f]);
+    if (skip_[key.first] || skip_[key.second]) continue;
     // A body that turned fast in this step: unless the two move together, its pairs are among
     // the fast ones now, and what they remember of the face comes after anything remembered
     // before.
@@ -566,6 +605,21 @@ std::vector<ImpulseContact>& ContactGathering::gather(World& world, double dt, G
   contacts_.insert(contacts_.end(), fastContacts_.begin() + static_cast<std::ptrdiff_t>(f),
                    fastContacts_.end());
   return contacts_;
+}
+
+void ContactGathering::refreshIslands(const World& world) {
+  const std::size_t n = world.bodies.size();
+  if (islandSweep_ != sweeps_ || islands_.size() != n) {
+    // A new sweep: the islands of its pairs and of the cached ones, every island active.
+    std::vector<char> movable(n);
+    for (std::size_t i = 0; i < n; ++i) movable[i] = static_cast<char>(!world.bodies[i].immovable);
+    islands_.reset(movable);
+    for (const PairReach& pair : pairReach_) islands_.join(pair.a, pair.b);
+    joinedCandidates_ = 0;
+    islandSweep_ = sweeps_;
+  }
+  for (; joinedCandidates_ < candidates_.size(); ++joinedCandidates_)
+    islands_.join(candidates_[joinedCandidates_].a, candidates_[joinedCandidates_].b);
 }
 
 bool ContactGathering::candidateManifold(const World& world, std::size_t k, double margin,

@@ -101,6 +101,7 @@
 #include "boxsim/collision/obb.hpp"
 #include "boxsim/collision/separating_axis.hpp"
 #include "boxsim/core/world.hpp"
+#include "boxsim/impulse_damped/contact_islands.hpp"
 #include "boxsim/impulse_damped/contact_normal.hpp"
 #include "boxsim/impulse_damped/impulse_params.hpp"
 
@@ -163,6 +164,10 @@ class ContactGathering {
   /// centres to one point, the midpoint of the two). The result stays valid until the next call.
   std::vector<ImpulseContact>& begin(World& world, double dt, GravityMode predict,
                                      double margin);
+  /// OncePerStep: the step's narrow phase at the current poses and its candidate pairs (the
+  /// file comment), which the first begin() of the step would otherwise find, with the same
+  /// arguments; nothing under EveryPass. Lets a caller time it apart from the passes.
+  void beginStep(const World& world, double dt, GravityMode predict, double margin);
   /// Ends a pass. \alg{A.2} L6, revertToOriginalPositions, already happened in begin().
   void end(World& world);
   /// Ends the step: the closest faces seen become the previous step's, and the cached contacts
@@ -179,6 +184,13 @@ class ContactGathering {
   /// margin wider than the sweep's, or many bodies outside their bounds.
   bool stepPairs(const World& world, double margin, std::vector<std::pair<int, int>>& pairs) const;
 
+  /// OncePerStep: the islands of the step's candidate pairs (contact_islands.hpp), kept up to
+  /// date pass by pass; a pass skips the bodies of settled islands (they stand, move and touch
+  /// as in the pass that settled them). Null under EveryPass, which has no candidates.
+  ContactIslands* islands() {
+    return params_.gathering == ContactGatheringMode::OncePerStep ? &islands_ : nullptr;
+  }
+
   /// The normal model and its memory, for contacts gathered outside the passes.
   ContactNormalTracker& normals() { return normals_; }
   /// Narrow phases run since construction (OncePerStep: cache builds), for tests and benches.
@@ -186,6 +198,9 @@ class ContactGathering {
   /// OncePerStep: narrow phases of pairs with a fast body at the poses of a pass, since
   /// construction, for tests and benches.
   long passNarrowPhases() const { return passNarrowPhases_; }
+  /// OncePerStep: bodies that sat a pass out because their island was settled (islands()),
+  /// summed over the passes since construction, for tests and benches.
+  long skippedBodyPasses() const { return skippedBodyPasses_; }
 
  private:
   /// One manifold point with the parts of its predicted depth that do not change in a step.
@@ -257,6 +272,9 @@ class ContactGathering {
   /// as it was) when they do not touch within the margin.
   bool candidateManifold(const World& world, std::size_t candidate, double margin,
                          ContactManifold& manifold);
+  /// Brings the islands up to the step's candidates and cached pairs: built anew after a sweep,
+  /// joined with the pairs added since otherwise.
+  void refreshIslands(const World& world);
   /// The step's candidate pairs: one sweep over every body's bounds from setGuard, with
   /// sweepMargin_; bodies must stand at their current poses.
   void sweepCandidates(const World& world, const Vec3& gravityStep, double dt);
@@ -370,6 +388,7 @@ class ContactGathering {
   double sweepMargin_ = 0.0;
   long narrowPhases_ = 0;
   long passNarrowPhases_ = 0;
+  long skippedBodyPasses_ = 0;
   /// The sweep's pairs in increasing (a, b) order, then those growCandidates added since, in
   /// the order it added them.
   std::vector<Candidate> candidates_;
@@ -403,6 +422,11 @@ class ContactGathering {
   double predictedDt_ = 0.0;
   std::vector<ContactManifold> manifolds_;  ///< the candidates' last manifolds (Candidate)
   std::vector<ContactManifold> exactManifolds_;  ///< the cached pairs' narrow phases (CachedPair::exact)
+  ContactIslands islands_;              ///< the islands of the candidates (islands())
+  std::uint64_t sweeps_ = 0;            ///< sweeps of the candidates so far
+  std::uint64_t islandSweep_ = 0;       ///< the sweep islands_ was built after
+  std::size_t joinedCandidates_ = 0;    ///< candidates_ joined into islands_ so far
+  std::vector<char> skip_;              ///< per body, this pass: its island is settled
 };
 
 }  // namespace boxsim

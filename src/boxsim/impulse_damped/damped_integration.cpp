@@ -4,6 +4,7 @@
 #include "boxsim/impulse_damped/damped_integration.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <stdexcept>
 #include <string>
 
@@ -48,6 +49,7 @@ std::map<std::string, std::string> DampedIntegrationStepper::parameters() const 
       {"k7", shortestText(d.angularSmallFactor)},
       {"eps8_g_dt_per_l", shortestText(d.angularZeroEps)},
       {"eps9_g_dt_per_l", shortestText(d.spinZeroEps)},
+      {"eps9_either_sign", d.spinZeroSymmetric ? "on" : "off"},
       {"eps10_g_dt2", shortestText(d.positionSnapEps)},
       {"eps11_g_dt2_per_l", shortestText(d.rotationSnapEps)},
       {"eps1_nudge_per_l", shortestText(params_.fixContacts.nudge)},
@@ -96,6 +98,19 @@ StepStats DampedIntegrationStepper::step(World& world, double dt) {
 
 StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   StepStats stats;
+  // With a profile asked for, each stage's wall-clock time is added to its slot.
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point mark;
+  if (profile_) {
+    ++profile_->steps;
+    mark = Clock::now();
+  }
+  const auto lap = [&](double DampedStepProfile::*slot) {
+    if (!profile_) return;
+    const Clock::time_point now = Clock::now();
+    profile_->*slot += std::chrono::duration<double>(now - mark).count();
+    mark = now;
+  };
   const std::size_t n = world.bodies.size();
   if (stable_.size() != n || !params_.useGeometricStability) stable_.assign(n, 0);
   // ℓ before sleeping bodies stand in as immovable, which would hide them from it.
@@ -105,7 +120,9 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   // their real mass properties must come back whatever happens after.
   const Sleeping::RestoreOnExit restoreOnExit(sleeping_, world);
   // §4.5: with every movable body asleep nothing can happen; the step costs nothing.
-  if (!sleeping_.begin(world)) {
+  const bool awake = sleeping_.begin(world);
+  lap(&DampedStepProfile::sleeping);
+  if (!awake) {
     stats.sleeping = sleeping_.asleepCount();
     stats.contacts = sleeping_.restingContacts();
     return stats;
@@ -124,6 +141,11 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   };
   // Bodies that take part in a contact (or, with dampCollidingBodies, a collision) this step.
   std::vector<char> touched(world.bodies.size(), 0);
+  // The contacts of the step's start, found before the first pass would find them.
+  gathering_.beginStep(world, dt, GravityMode::VelocityPlusGravity, margin);
+  lap(&DampedStepProfile::stepContacts);
+  // Islands whose passes changed nothing sit out the rest of the loop (contact_islands.hpp).
+  const bool islands = params_.islandSettling;
   // L1: RESOLVECOLLISIONS — positions predicted with gravity, impulses without; high-speed
   // collisions perturbed (§4.2).
   for (int i = 0; i < params_.impulse.collisionIterations; ++i) {
@@ -131,21 +153,30 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
         impulsePass(world, dt, world.restitution, GravityMode::VelocityPlusGravity,
                     GravityMode::VelocityNoGravity, margin, gathering_, stable_,
                     params_.dampCollidingBodies ? &touched : nullptr,
-                    hooked ? collisionHook : BeforeCollide{}, &frictionTotals_);
+                    hooked ? collisionHook : BeforeCollide{}, &frictionTotals_,
+                    islands ? IslandSettling::Unchanged : IslandSettling::Never);
     stats.events += pass.impulses;
     ++stats.passes;
     // A pass that changed no body leaves the world as it found it: every later collision pass
     // would repeat it, changing nothing. Stopping here gives the same bits, sooner.
     if (!pass.changed && params_.stopUnchangedCollisionPasses) break;
+    if (pass.settled) break;
   }
+  lap(&DampedStepProfile::collisionPasses);
   // L2: RESOLVECONTACTS — restitution from -1 towards 0 (RESOLVECONTACTS L5), gravity trick.
+  if (ContactIslands* settled = gathering_.islands()) settled->activateAll();
   const int iterations = params_.impulse.contactIterations;
-  for (int i = 1; i <= iterations; ++i, ++stats.passes)
-    stats.events += impulsePass(world, dt, -1.0 + static_cast<double>(i) / iterations,
-                                GravityMode::VelocityPlusGravity, GravityMode::VelocityPlusGravity,
-                                margin, gathering_, stable_, &touched,
-                                sleeping ? contactHook : BeforeCollide{}, &frictionTotals_)
-                        .impulses;
+  for (int i = 1; i <= iterations; ++i) {
+    const PassResult pass =
+        impulsePass(world, dt, -1.0 + static_cast<double>(i) / iterations,
+                    GravityMode::VelocityPlusGravity, GravityMode::VelocityPlusGravity, margin,
+                    gathering_, stable_, &touched, sleeping ? contactHook : BeforeCollide{},
+                    &frictionTotals_, islands ? IslandSettling::Unapproached : IslandSettling::Never);
+    stats.events += pass.impulses;
+    ++stats.passes;
+    if (pass.settled) break;
+  }
+  lap(&DampedStepProfile::contactPasses);
   // L3: IntegrateObjectVelocities (sleeping bodies stand immovable and are skipped).
   integrateVelocities(world, dt);
   // L4: DAMPENOBJECTS (its L22 integrates the positions).
@@ -154,6 +185,7 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   } else {
     predictPositions(world, dt, Vec3::Zero(), params_.impulse.integrator);
   }
+  lap(&DampedStepProfile::velocitiesAndDamping);
   const double restingMargin = restingContactMargin(world, margin, dt);
   // L5: FIXCONTACTCONSTRAINTS; sleeping bodies still stand in as immovable, so none moves.
   std::vector<ContactManifold> contacts;
@@ -177,10 +209,12 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
       contacts = refindContacts(world, restingMargin, contacts, nudged);
     }
   }
+  lap(&DampedStepProfile::fixContacts);
   if (params_.useGeometricStability) {
     stable_ = setGeometricallyStable(world, contacts, params_.geometricStability);
     sleeping_.holdStability(stable_);
   }
+  lap(&DampedStepProfile::stability);
   // The closest faces of the pairs the narrow phase skipped are recorded as if it had seen
   // them, so a pair that wakes keeps the normal it had (\thesis{§3.3.2}) and waking changes
   // nothing the normal model remembers.
@@ -195,6 +229,7 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
     stats.contacts = static_cast<int>(contacts.size());
   }
   stats.sleeping = sleeping_.asleepCount();
+  lap(&DampedStepProfile::sleeping);
   return stats;
 }
 

@@ -47,6 +47,35 @@ struct DampedIntegrationParams {
   /// after a pass that changed no body's momenta or mobility, since every later pass would
   /// repeat it. Not written into output headers, as it changes no result.
   bool stopUnchangedCollisionPasses = true;
+  /// Speed only, the same bits either way (tested): the collision and contact passes
+  /// (\alg{A.2} L1-L2) skip, for the rest of their loop, the islands of the step's contact
+  /// graph that a pass left unchanged (contact_islands.hpp says when that is exact). Needs
+  /// ImpulseParams::gathering OncePerStep, which finds the islands; not written into output
+  /// headers.
+  bool islandSettling = true;
+};
+
+/// Where the time of damped integration's steps goes, by stage of \alg{A.2} DAMPEDINTEGRATION:
+/// wall-clock seconds summed over the steps taken while a stepper held the profile
+/// (DampedIntegrationStepper::setProfile), for benches. Each stage's time includes the contact
+/// gathering and narrow phases it runs.
+struct DampedStepProfile {
+  /// s, the narrow phase of the slow pairs at the step's start and the step's candidate pairs
+  /// (ContactGathering::beginStep), before L1
+  double stepContacts = 0.0;
+  double collisionPasses = 0.0;       ///< s, L1 RESOLVECOLLISIONS
+  double contactPasses = 0.0;         ///< s, L2 RESOLVECONTACTS
+  double velocitiesAndDamping = 0.0;  ///< s, L3-L4 (DAMPENOBJECTS' position update included)
+  double fixContacts = 0.0;           ///< s, L5 FIXCONTACTCONSTRAINTS with its contacts found again
+  double stability = 0.0;             ///< s, L6 SETGEOMETRICALLYSTABLE
+  /// s, \thesis{§4.5}: sleeping bodies put in place as immovable before the passes, and
+  /// bodies put to sleep or kept awake after L6 (with the normal model's end of step)
+  double sleeping = 0.0;
+  long steps = 0;  ///< steps profiled (pieces of a step split by continuous collision each count)
+  /// s, the sum of the stages.
+  double total() const {
+    return stepContacts + collisionPasses + contactPasses + velocitiesAndDamping + fixContacts + stability + sleeping;
+  }
 };
 
 /// DAMPEDINTEGRATION(Δt) of \alg{A.2} as a Stepper ("damped"), with sleeping and visual
@@ -86,6 +115,12 @@ class DampedIntegrationStepper final : public Stepper {
   const VisualPlausibility& plausibility() const { return plausibility_; }
   /// Narrow phases the contact gathering has run (ContactGathering::narrowPhases).
   long narrowPhases() const { return gathering_.narrowPhases(); }
+  /// The contact gathering, for its counters (ContactGathering::passNarrowPhases,
+  /// ContactGathering::skippedBodyPasses).
+  const ContactGathering& gathering() const { return gathering_; }
+  /// Adds the time of every later step to `profile`, stage by stage (nullptr: stop). The
+  /// profile must outlive its use; copies of the stepper share it.
+  void setProfile(DampedStepProfile* profile) { profile_ = profile; }
 
  private:
   /// \alg{A.2} DAMPEDINTEGRATION L1-L6 for dt s, as step() without continuous collisions.
@@ -97,6 +132,7 @@ class DampedIntegrationStepper final : public Stepper {
   VisualPlausibility plausibility_;
   std::vector<char> stable_;
   Sleeping sleeping_;
+  DampedStepProfile* profile_ = nullptr;  ///< where stage times go, or none
 };
 
 }  // namespace boxsim

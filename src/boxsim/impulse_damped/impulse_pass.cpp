@@ -109,7 +109,8 @@ double collideImpulse(const World& world, const ImpulseContact& contact, double 
 PassResult impulsePass(World& world, double dt, double restitution, GravityMode predict,
                        GravityMode impulseGravity, double margin, ContactGathering& gathering,
                        const std::vector<char>& stable, std::vector<char>* touched,
-                       const BeforeCollide& beforeCollide, FrictionTotals* totals) {
+                       const BeforeCollide& beforeCollide, FrictionTotals* totals,
+                       IslandSettling settling) {
   // L2-L3: integrateObjectPositions and gatherCollisions; L6, revertToOriginalPositions, too:
   // the contacts keep the lever arms of the poses they were found at.
   // DEVIATION(A.2 L4-L6): COLLIDE after the revert (contact_gathering.hpp, "Where COLLIDE acts").
@@ -118,16 +119,26 @@ PassResult impulsePass(World& world, double dt, double restitution, GravityMode 
   PassResult result;
   result.contacts = static_cast<int>(contacts.size());
   const CollideCall call{restitution, impulseGravity, dt};
+  // The pass' contacts are those of the islands still active (contact_islands.hpp).
+  ContactIslands* islands = settling == IslandSettling::Never ? nullptr : gathering.islands();
   for (ImpulseContact& c : contacts) {
-    // Once one contact changed a body the pass has changed the world: no more comparing.
-    const bool watch = !result.changed;
+    // The island of the contact's movable body (a movable body's island holds both).
+    const int body = world.bodies[c.a].immovable ? c.b : c.a;
+    // Once one contact changed a body the pass has changed the world: no more comparing,
+    // unless the islands need to know which.
+    const bool watch = !result.changed || (islands && !islands->changed(body));
     const BodyMomenta beforeA(world.bodies[c.a]), beforeB(world.bodies[c.b]);
     if (beforeCollide) beforeCollide(world, c, call);
     if (touched) (*touched)[c.a] = (*touched)[c.b] = 1;
-    if (collide(world, c, restitution, impulseGravity, dt, stable, totals) > 0.0) ++result.impulses;
-    if (watch)
-      result.changed = !beforeA.same(world.bodies[c.a]) || !beforeB.same(world.bodies[c.b]);
+    const double j = collide(world, c, restitution, impulseGravity, dt, stable, totals);
+    if (j > 0.0) ++result.impulses;
+    if (!watch) continue;
+    const bool changed = !beforeA.same(world.bodies[c.a]) || !beforeB.same(world.bodies[c.b]);
+    result.changed = result.changed || changed;
+    if (islands && (changed || (settling == IslandSettling::Unapproached && j > 0.0)))
+      islands->markChanged(body);
   }
+  if (islands) result.settled = islands->settleUnchanged();
   // The momenta the impulses changed stay.
   gathering.end(world);
   return result;

@@ -72,6 +72,9 @@ struct PassResult {
   /// bit. When it did not, the world leaves the pass as it entered it, so another pass with
   /// the same arguments would find the same contacts and change nothing either.
   bool changed = false;
+  /// With island settling, whether every island is settled after the pass: the remaining
+  /// passes of its loop would change nothing.
+  bool settled = false;
 };
 
 /// One pass of RESOLVECOLLISIONS / RESOLVECONTACTS (\alg{A.2} L2-L6 of either):
@@ -83,11 +86,14 @@ struct PassResult {
 /// the moving and gathering, exactly or to first order (contact_gathering.hpp). Bodies marked in
 /// `touched` (one flag per body, or empty) get their flag set when they take part in a contact.
 /// `beforeCollide`, when set, sees each contact just before its COLLIDE; `totals`, the step's
-/// friction budget, goes to COLLIDE.
+/// friction budget, goes to COLLIDE. With `settling` other than Never and a gathering that has
+/// islands (OncePerStep), an island the pass left unchanged by that rule is settled: later
+/// passes skip it until ContactIslands::activateAll (contact_islands.hpp; the same bits).
 PassResult impulsePass(World& world, double dt, double restitution, GravityMode predict,
                        GravityMode impulseGravity, double margin, ContactGathering& gathering,
                        const std::vector<char>& stable, std::vector<char>* touched = nullptr,
-                       const BeforeCollide& beforeCollide = {}, FrictionTotals* totals = nullptr);
+                       const BeforeCollide& beforeCollide = {}, FrictionTotals* totals = nullptr,
+                       IslandSettling settling = IslandSettling::Never);
 
 /// IntegrateObjectVelocities of \alg{A.2 L3} (and Guendelman et al.'s velocity update):
 /// P += Δt m g for every movable body; positions are not touched.

@@ -90,6 +90,7 @@ void ContactGathering::sweepCandidates(const World& world, const Vec3& gravitySt
   guardHi_.resize(n);
   guardStamp_.resize(n);
   for (std::size_t i = 0; i < n; ++i) setGuard(world, static_cast<int>(i), gravityStep, dt);
+  ++sweeps_;
   candidates_.clear();
   hasCandidate_.assign(n, 0);
   grownKeys_.clear();
