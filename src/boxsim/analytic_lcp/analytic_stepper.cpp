@@ -108,6 +108,9 @@ StepStats AnalyticStepper::step(World& world, double dt) {
     };
   // An overlapping pair none of whose contact points approaches faster than restingSpeed is a
   // resting contact: its LCP force and the drift correction mend the overlap, no bisection.
+  // DEVIATION(§2.1, §3.3.1): the basic technique stops at any intersection and bisects for its
+  // time; a resting contact that rounding or the LCP's ε left a hair inside its support would
+  // then be taken for a collision, with a bisection, in every interval it stays there.
   hooks.notColliding = [this](const World& w, int i, int j) {
     const ContactManifold m = collideBoxes(Obb::of(w.bodies[i]), Obb::of(w.bodies[j]), 0.0);
     for (int k = 0; k < m.count; ++k)

@@ -10,8 +10,11 @@
 /// and bisects for the time of any collision, and applies impulses. A collision slower than
 /// `stickySpeed` is perfectly inelastic (sticky collisions, \thesis{§4.3}): the two bodies
 /// then rest on each other and the next interval's LCP holds them, instead of a cascade of ever
-/// smaller bounces. The thesis calls such a collision "purely elastic" in §4.3, but describes one
-/// that makes the bodies "stick together": restitution 0, as here.
+/// smaller bounces.
+/// DEVIATION(\thesis{§4.3}, "purely elastic"): the thesis calls such a collision purely
+/// elastic, but describes one that makes the bodies "stick together"; a purely elastic one
+/// (restitution 1) would send them apart at full speed. Restitution 0, as here, is the
+/// collision that sticks.
 #pragma once
 
 #include "boxsim/analytic_lcp/lcp_solver.hpp"
@@ -39,10 +42,10 @@ inline LcpParams impulseLcpParams() {
 struct AnalyticParams {
   /// The collision loop: integrator (semi-implicit Euler by default, the deviation
   /// BasicCollidingParams explains), bisection tolerances, event and impulse bounds. Its depth
-  /// tolerance is 1e-6 m rather than the basic technique's 1e-9 m: resting contacts held by
-  /// LCP forces drift into each other by rounding and by the ε the solver lets pass (below
-  /// ½ ε t², 1e-9 m within 15 ms at ε = 1e-5 m/s²), and each such nanometre would otherwise
-  /// be a collision and a bisection.
+  /// tolerance is 1e-4 m (a tenth of a millimetre) rather than the basic technique's 1e-9 m:
+  /// resting contacts held by LCP forces drift into each other by rounding, by the ε the solver
+  /// lets pass (½ ε t², 1e-9 m within 15 ms at ε = 1e-5 m/s²) and by the drift correction's
+  /// own overshoot, and each such overlap would otherwise be a collision and a bisection.
   BasicCollidingParams loop = withDepthTolerance(1e-4);
   /// Baraff's solver with the thesis' ε and force clamp.
   LcpParams lcp;
@@ -75,8 +78,10 @@ struct AnalyticParams {
   /// β of the drift correction: the share of a resting contact's penetration removed per step.
   /// 0.2, a common choice that removes it within a few steps without making the box jump.
   double driftBeta = 0.2;
-  /// The geometric-stability exclusion (\thesis{§5.4}), off by default (the thesis' analytic
-  /// method had no such thing). Stable bodies (geometric_stability.hpp) cannot be accelerated
+  /// The geometric-stability exclusion (\thesis{§5.4}), off by default so that the method is
+  /// Baraff's LCP as \thesis{§3.3.1} uses it; \thesis{§5.4} pairs it with analytic contact
+  /// forces for Fig. 5.6, and the analytic chapter's figure of it turns it on (what it saves
+  /// is the LCP's size). Stable bodies (geometric_stability.hpp) cannot be accelerated
   /// by gravity or by frictionless contact forces: their contacts with one another leave the
   /// LCP, they stand in it as immovable where unstable bodies touch them, and they are held
   /// against gravity. Every body's acceleration is the full LCP's (tested); the system shrinks.

@@ -63,8 +63,12 @@ struct LcpParams {
   /// rounding error accumulates in the sets' conditions over the pivots. Off is Baraff's
   /// procedure as printed.
   bool snapToBounds = true;
-  /// How fdirection's linear system is solved. All three cope with redundant contacts; the
-  /// incremental factor is the fastest while the clamped set is independent.
+  /// How fdirection's linear system is solved. LDLᵀ, the complete orthogonal decomposition and
+  /// the incremental factor cope with redundant contacts; the incremental factor is the fastest
+  /// while the clamped set is independent.
+  /// DEVIATION(\thesis{§3.3.1}): the thesis solved it by Gaussian elimination
+  /// (LcpLinearSolver::GaussianElimination), whose zero pivot on redundant contacts returns a
+  /// direction of rounding noise; the default is the incremental Cholesky factor.
   LcpLinearSolver linearSolver = LcpLinearSolver::IncrementalCholesky;
   /// Guard against cycling: at most this many pivots (maxstep events) in all, as a multiple
   /// of n. Baraff proves termination for positive definite A; rounding can still cycle.

@@ -80,8 +80,11 @@ void dampMomenta(World& world, double dt, const std::vector<char>& touched,
       if (std::abs(o.s.L[c]) < params.angularSmallEps * lUnit) o.s.L[c] *= params.angularSmallFactor;
       if (std::abs(o.s.L[c]) < params.angularZeroEps * lUnit) o.s.L[c] = 0.0;
     }
-    // A.2 L20-L21: a small spin about y is stopped only when it is non-negative, as written.
-    if (std::abs(o.s.L.y()) < params.spinZeroEps * lUnit && o.s.L.y() >= 0.0) o.s.L.y() = 0.0;
+    // A.2 L20-L21: a small spin about y is stopped only when it is non-negative, as written
+    // (spinZeroSymmetric: of either sign).
+    if (std::abs(o.s.L.y()) < params.spinZeroEps * lUnit &&
+        (o.s.L.y() >= 0.0 || params.spinZeroSymmetric))
+      o.s.L.y() = 0.0;
     o.updateVelocities();  // R is current: tiltTowardsYAxis updates it when it turns the body
     // DEVIATION(A.2 L10, L16-L21): the rotational energy ½ Lᵀ R I⁻¹ Rᵀ L is not diagonal in
     // the world components of L, so scaling or zeroing one of them, or turning the box with L
@@ -100,7 +103,10 @@ DampingStats dampenObjects(World& world, double dt, const std::vector<char>& tou
                            const DampingParams& params, Integrator integrator) {
   DampingStats stats;
   dampMomenta(world, dt, touched, params, &stats);
-  // A.2 L22: integrateObjectPositions with the velocities as they now are.
+  // A.2 L22: integrateObjectPositions(Δt, STANDARD_GRAVITY) with the velocities as they now
+  // are. STANDARD_GRAVITY is read as gravity applied the usual way, which L3 already did to the
+  // velocities; adding g Δt again, as the passes' VELOCITY_PLUS_GRAVITY does for a prediction,
+  // would count the step's gravity twice in the positions.
   const SavedPoses old = predictPositions(world, dt, Vec3::Zero(), integrator);
   // A.2 L23-L28: a body that would move less than ε10 and turn less than ε11 stays put.
   // DEVIATION(A.2 L23): only bodies that had a contact interaction and lie with a face

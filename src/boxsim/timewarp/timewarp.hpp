@@ -50,7 +50,10 @@ struct TimewarpParams {
   /// valid time, if later), and StepStats::limitReached is set (as
   /// BasicCollidingParams::maxEventsPerStep).
   int maxEventsPerStep = 1000;
-  /// Integration between collisions (semi-implicit Euler, as the basic technique).
+  /// Integration between collisions (integrateForward of \alg{A.1}).
+  /// DEVIATION(\thesis{§6.2}, \alg{A.1} integrateForward): the thesis integrated with forward
+  /// Euler; the default is semi-implicit Euler, as the basic technique's, for the reason
+  /// BasicCollidingParams gives (forward Euler adds energy to every bounce).
   Integrator integrator = Integrator::SemiImplicitEuler;
   /// FIXINTERPENETRATION at the end of the frame (\alg{A.1} L22 / L33), with the slop and
   /// nudge of \alg{A.2}'s FIXCONTACTCONSTRAINTS, which implements \thesis{§4.4}.
