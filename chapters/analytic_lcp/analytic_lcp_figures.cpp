@@ -63,23 +63,34 @@ DieRun runDie(const std::string& sceneDir, Stepper& stepper, double duration) {
 }
 
 void writeStickyCollisions(const std::string& sceneDir, const std::string& out) {
-  AnalyticParams sticky, plain;
+  // The analytic method as shipped (with its drift correction) and in the thesis' regime
+  // (drift correction off: Baraff's LCP asks resting contacts for a >= 0 only), each with and
+  // without sticky collisions.
+  AnalyticParams sticky, plain, thesisSticky, thesisPlain;
   plain.sticky = false;
+  thesisSticky.driftCorrection = false;
+  thesisPlain.driftCorrection = false;
+  thesisPlain.sticky = false;
   AnalyticStepper stickyStepper(sticky), plainStepper(plain);
+  AnalyticStepper thesisStickyStepper(thesisSticky), thesisPlainStepper(thesisPlain);
   BasicCollidingStepper basic;
   const double duration = 10.0;
   const DieRun a = runDie(sceneDir, stickyStepper, duration);
   const DieRun b = runDie(sceneDir, plainStepper, duration);
   const DieRun c = runDie(sceneDir, basic, duration);
+  const DieRun d = runDie(sceneDir, thesisStickyStepper, duration);
+  const DieRun e = runDie(sceneDir, thesisPlainStepper, duration);
   std::ostringstream text;
   text << "# s4_3_sticky_collisions: the die of chapters/impulse_damped/scenes/die.json, dt 1/60 s\n"
        << "# sticky_speed_m_per_s: " << sticky.stickySpeed << "\n"
        << "# columns: t events_analytic_sticky kinetic_analytic_sticky events_analytic_plain "
-          "kinetic_analytic_plain events_basic_colliding kinetic_basic_colliding\n";
+          "kinetic_analytic_plain events_basic_colliding kinetic_basic_colliding "
+          "events_thesis_sticky kinetic_thesis_sticky events_thesis_plain kinetic_thesis_plain\n";
   for (std::size_t k = 0; k < a.events.size(); ++k) {
-    char line[256];
-    std::snprintf(line, sizeof line, "%.6f %d %.6e %d %.6e %d %.6e\n", (k + 1) * kDt, a.events[k],
-                  a.kinetic[k], b.events[k], b.kinetic[k], c.events[k], c.kinetic[k]);
+    char line[320];
+    std::snprintf(line, sizeof line, "%.6f %d %.6e %d %.6e %d %.6e %d %.6e %d %.6e\n", (k + 1) * kDt,
+                  a.events[k], a.kinetic[k], b.events[k], b.kinetic[k], c.events[k], c.kinetic[k],
+                  d.events[k], d.kinetic[k], e.events[k], e.kinetic[k]);
     text << line;
   }
   writeFileAtomically(out + "/s4_3_sticky_collisions.dat", text.str());

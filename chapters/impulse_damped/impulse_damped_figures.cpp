@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <iostream>
 #include <memory>
 
@@ -137,14 +138,19 @@ Chatter chatterOf(const Trajectory& t, std::size_t from, std::size_t to) {
   return c;
 }
 
+/// The settled window of a scene of the chatter figures, s: die 6-8 s, tower 2-8 s, the
+/// pyramid 2-5 s (before the shot).
+std::pair<double, double> settledWindow(const std::string& scene) {
+  return {scene == "die" ? 6.0 : 2.0, scene == "pyramid10_shot" ? 5.0 : 8.0};
+}
+
 /// The chatter measure for each run, over a window where the scene should be at rest.
 void figS5_2Chatter(const std::vector<Run>& runs, const std::string& dir) {
   std::string out = header("s5_2_chatter: chatter of settled scenes (window: die 6-8 s, tower 2-8 s, pyramid 2-5 s)",
                            "case label sign_changes_per_body_s jitter_amplitude_m");
   int index = 0;
   for (const Run& r : runs) {
-    const double from = r.scene == "die" ? 6.0 : 2.0;
-    const double to = r.scene == "pyramid10_shot" ? 5.0 : 8.0;
+    const auto [from, to] = settledWindow(r.scene);
     const Chatter c = chatterOf(r.trajectory, static_cast<std::size_t>(from * 60), static_cast<std::size_t>(to * 60));
     char line[200];
     std::snprintf(line, sizeof line, "%d %s/%s %.6g %.6g\n", index++, r.scene.c_str(), r.method.c_str(),
@@ -152,6 +158,96 @@ void figS5_2Chatter(const std::vector<Run>& runs, const std::string& dir) {
     out += line;
   }
   writeFileAtomically(dir + "/s5_2_chatter.dat", out);
+}
+
+/// Damped integration with one of its techniques off at a time (issue: which of them stops the
+/// chatter), and the plain impulse step beside it: the chatter measures and the mean kinetic
+/// energy over each scene's settled window. The kinetic energy catches what the positions do
+/// not: a body whose momenta never settle while A.2 L23-L28's snap holds its pose.
+void figS5_3Ablation(const std::string& sceneDir, const std::string& dir) {
+  struct Variant {
+    const char* name;
+    std::function<void(DampedIntegrationParams&)> change;  ///< none: the plain impulse step
+  };
+  const std::vector<Variant> variants = {
+      {"damped", [](DampedIntegrationParams&) {}},
+      {"no_damping", [](DampedIntegrationParams& p) { p.damp = false; }},
+      {"no_fix_contacts", [](DampedIntegrationParams& p) { p.fixContactConstraints = false; }},
+      {"no_geometric_stability", [](DampedIntegrationParams& p) { p.useGeometricStability = false; }},
+      {"no_sleeping", [](DampedIntegrationParams& p) { p.sleep.enabled = false; }},
+      {"every_pass", [](DampedIntegrationParams& p) {
+         p.impulse.gathering = ContactGatheringMode::EveryPass;
+       }},
+      {"plain_impulse", nullptr},
+  };
+  std::string out = header(
+      "s5_3_ablation: damped integration with one technique off at a time, and the plain impulse "
+      "step (windows: die 6-8 s, tower 2-8 s, pyramid 2-5 s)",
+      "case scene variant sign_changes_per_body_s jitter_amplitude_m mean_kinetic_J");
+  int index = 0;
+  for (const char* scene : {"die", "tower10", "pyramid10_shot"}) {
+    const auto [from, to] = settledWindow(scene);
+    for (const Variant& v : variants) {
+      const std::string path = sceneDir + "/" + scene + ".json";
+      Scene s = loadScene(path);
+      std::unique_ptr<Stepper> stepper;
+      if (v.change) {
+        DampedIntegrationParams params;
+        v.change(params);
+        stepper = std::make_unique<DampedIntegrationStepper>(params);
+      } else {
+        stepper = std::make_unique<ImpulseStepper>();
+      }
+      Recorder recorder(s.world, runParameters(*stepper, s.world, path, 1.0 / 60.0, to));
+      SimulateOptions options;
+      options.duration = to;
+      simulate(s.world, *stepper, options, recorder);
+      const Trajectory& t = recorder.trajectory();
+      const auto first = static_cast<std::size_t>(from * 60), last = static_cast<std::size_t>(to * 60);
+      const Chatter c = chatterOf(t, first, last);
+      double kinetic = 0.0;
+      for (std::size_t k = first; k < last; ++k) kinetic += t.frames[k].kinetic;
+      kinetic /= static_cast<double>(last - first);
+      char line[256];
+      std::snprintf(line, sizeof line, "%d %s %s %.6g %.6g %.6g\n", index++, scene, v.name,
+                    c.signChangesPerBodySecond, c.jitterAmplitude, kinetic);
+      out += line;
+    }
+  }
+  writeFileAtomically(dir + "/s5_3_ablation.dat", out);
+}
+
+/// Fig. 5.2: damping against Newtonian friction along a chain. Box A (a 1 kg unit cube) slides
+/// at 2 m/s on box B (1 kg, 3 m × 0.5 m × 2 m), which rests on frictionless ground. Under damped
+/// integration as the thesis has it (frictionless, damping standing in for friction) A slows and
+/// B never moves; under Coulomb friction (μ = 0.5 between A and B, closed form) the force that
+/// slows A drags B along (force B of the caption), until both move at the common velocity
+/// m_A v0 / (m_A + m_B) that momentum conservation gives.
+void figFig5_2DampingVsFriction(const std::string& dir) {
+  const double v0 = 2.0, mu = 0.5, g = 9.81, mA = 1.0, mB = 1.0;
+  World world;
+  world.addGround(0.0, 50.0);
+  const int b = addBox(world, "B", Vec3(1.5, 0.25, 1.0), Vec3(0.0, 0.25, 0.0));
+  const int a = addBox(world, "A", Vec3(0.5, 0.5, 0.5), Vec3(-0.9, 1.0, 0.0));
+  world.bodies[static_cast<std::size_t>(a)].setVelocity(Vec3(v0, 0.0, 0.0));
+  DampedIntegrationStepper stepper;
+  std::string out = header("fig5_2_damping_vs_friction: A (1 kg cube) slides at 2 m/s on B (1 kg), "
+                           "B on frictionless ground; Coulomb: mu 0.5 between A and B, closed form",
+                           "t_s vA_damped vB_damped vA_coulomb vB_coulomb");
+  const double common = mA * v0 / (mA + mB);
+  for (int k = 0; k <= 90; ++k) {
+    const double t = k / 60.0;
+    if (k > 0) stepper.step(world, 1.0 / 60.0);
+    // Coulomb: A decelerates at mu g, B accelerates at mu g mA / mB, until they move together.
+    const double vA = std::max(common, v0 - mu * g * t);
+    const double vB = std::min(common, mu * g * mA / mB * t);
+    char line[200];
+    std::snprintf(line, sizeof line, "%.6f %.6g %.6g %.6g %.6g\n", t,
+                  world.bodies[static_cast<std::size_t>(a)].v.x(),
+                  world.bodies[static_cast<std::size_t>(b)].v.x(), vA, vB);
+    out += line;
+  }
+  writeFileAtomically(dir + "/fig5_2_damping_vs_friction.dat", out);
 }
 
 /// Milliseconds per frame against time for the timed runs.
@@ -324,6 +420,8 @@ int main(int argc, char** argv) {
     for (const Run& r : energy)
       if (r.scene == "pyramid10_shot") writeTrajectory(outDir + "/fig6_6_pyramid10_" + r.method + ".dat", r.trajectory);
     figS3_3ContactNormals(sceneDir, outDir);
+    figS5_3Ablation(sceneDir, outDir);
+    figFig5_2DampingVsFriction(outDir);
     figS7FrictionIncline(outDir);
     std::vector<Run> timed;
     timed.push_back(runScene(sceneDir, "pyramid20_shot", "damped", 8.0));
@@ -334,6 +432,9 @@ int main(int argc, char** argv) {
     writeTrajectory(outDir + "/fig6_7_clump100_damped.dat", timed[1].trajectory);
     writeTrajectory(outDir + "/fig6_7_clump1000_damped.dat", timed[2].trajectory);
     writeTrajectory(outDir + "/fig6_7_clump100_damped_colliding.dat", clumpDampingCollisions(sceneDir));
+    // Fig. 6.7 read with the origin on the ground: the cubes pile up and settle.
+    writeTrajectory(outDir + "/fig6_7_clump100_ground_damped.dat",
+                    runScene(sceneDir, "clump100_ground", "damped", 15.0).trajectory);
   } catch (const std::exception& e) {
     std::cerr << "impulse_damped_figures: error: " << e.what() << "\n";
     return 1;

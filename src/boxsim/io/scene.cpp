@@ -322,7 +322,7 @@ void readBuilder(const Node& node, Scene& scene, std::set<std::string>& names) {
     if (node.has("gap")) spec.gap = node.at("gap").nonNegative("m", &kCoordinateRange);
     addPyramid(scene.world, spec);
   } else if (type == "clump") {
-    node.allowKeys({"type", "count", "size", "mass", "spacing", "center", "speed", "spin", "seed", "friction"});
+    node.allowKeys({"type", "count", "size", "mass", "spacing", "center", "target", "speed", "spin", "seed", "friction"});
     ClumpSpec spec;
     if (node.has("count")) spec.count = node.at("count").count();
     if (node.has("count")) requireRoom("count", spec.count);
@@ -330,6 +330,7 @@ void readBuilder(const Node& node, Scene& scene, std::set<std::string>& names) {
     spec.mass = mass(spec.mass);
     if (node.has("spacing")) spec.spacing = node.at("spacing").positive(kSizeRange);
     if (node.has("center")) spec.center = node.at("center").vec3(kCoordinateRange);
+    if (node.has("target")) spec.target = node.at("target").vec3(kCoordinateRange);
     if (node.has("speed")) spec.speed = node.at("speed").bounded(kSpeedRange);
     if (node.has("spin")) spec.spin = node.at("spin").nonNegative("rad/s", &kAngularSpeedRange);
     if (node.has("seed")) spec.seed = static_cast<unsigned long>(node.at("seed").count());

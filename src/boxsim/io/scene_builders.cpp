@@ -175,8 +175,9 @@ int addClump(World& world, const ClumpSpec& spec) {
         RigidBody b = cube(spec.size, spec.mass);
         b.s.x = spec.center + offset;
         b.updateDerived();
-        const double distance = offset.norm();
-        if (distance > 0.0) b.setVelocity(-spec.speed / distance * offset);
+        const Vec3 toTarget = spec.target ? Vec3(*spec.target - b.s.x) : Vec3(-offset);
+        const double distance = toTarget.norm();
+        if (distance > 0.0) b.setVelocity(spec.speed / distance * toTarget);
         if (spec.spin > 0.0) {
           const double wx = uniformSpin(), wy = uniformSpin(), wz = uniformSpin();
           b.setAngularVelocity(Vec3(wx, wy, wz));

@@ -5,6 +5,7 @@
 /// and returns how many it added; all bodies are cubes of one size and mass (\thesis{§3.1}).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -45,7 +46,8 @@ struct PyramidSpec {
 };
 
 /// `count` cubes on a regular grid of the given spacing centred on `center`, each moving at
-/// `speed` towards the centre (\thesis{Fig. 6.7}). The grid is nx × ny × nz = count with the
+/// `speed` towards `target`, the grid's centre unless given (\thesis{Fig. 6.7}: "an initial
+/// velocity towards the origin"; a cube standing on the target does not move). The grid is nx × ny × nz = count with the
 /// three as close to equal as count allows (100 = 5 × 5 × 4, 1000 = 10³). With `spin` > 0 each
 /// cube also spins, every component of its angular velocity drawn uniformly from [−spin, spin]
 /// by GSL's mt19937 seeded with `seed` (the same scene for the same seed), so that a clump
@@ -56,9 +58,12 @@ struct ClumpSpec {
   double mass = 1.0;     ///< kg
   double spacing = 2.0;  ///< centre-to-centre distance, m, > size
   Vec3 center = Vec3(0.0, 20.0, 0.0);  ///< m
-  double speed = 5.0;    ///< m/s towards the centre
+  double speed = 5.0;    ///< m/s towards the target
   double spin = 0.0;     ///< rad/s, largest component of a cube's random angular velocity, >= 0
   unsigned long seed = 1;  ///< seed of the spins' random generator
+  /// m: the point the cubes move towards; unset, the grid's centre (last, so that specs written
+  /// field by field in order keep their meaning)
+  std::optional<Vec3> target = std::nullopt;
 };
 
 /// Adds the die; returns 1. Throws std::invalid_argument on non-positive size or mass.
