@@ -6,6 +6,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "boxsim/core/math.hpp"
@@ -77,6 +78,9 @@ class PeerEngine {
   virtual void read(std::vector<PeerPose>& poses) const = 0;
   /// Movable boxes the engine itself holds asleep (not stepped) after the last step.
   virtual int asleep() const = 0;
+  /// Seconds of the steps since load() by stage of the engine's step, largest first, for the
+  /// engines that report them (boxsim damped: DampedStepProfile); empty for the others.
+  virtual std::vector<std::pair<std::string, double>> stages() const { return {}; }
 };
 
 /// boxsim under one of its methods (techniques.hpp), e.g. "damped", or a method with a contact

@@ -202,6 +202,75 @@ std::string aims(const std::vector<SceneResults>& scenes) {
   return out.str().empty() ? "" : "**Dense-pile aims** (the project's targets for damped integration on piles):\n\n" + out.str() + "\n";
 }
 
+/// Where boxsim's step goes on the scenes of the dense-pile aims: the first repetition's step
+/// time by stage (RunResult::stages), largest first.
+std::string stages(const std::vector<SceneResults>& scenes) {
+  std::ostringstream out;
+  const std::pair<const char*, double> dense[] = {{"pile343", 0.0},    {"pile343", 0.9},
+                                                  {"clump1000", 0.0},  {"clump10000", 0.9},
+                                                  {"clump10000", 0.0}};
+  for (const char* engine : kBoxsimRows)
+    for (const auto& [base, e] : dense) {
+      const SceneResults* s = sceneOf(scenes, base, e);
+      const RunResult* r = s ? find(*s, engine) : nullptr;
+      if (!r || r->stages.empty() || !(r->stagedStepsMs > 0.0)) continue;
+      const std::size_t steps = r->stepMs.size() / std::max<std::size_t>(1, r->repMeanMs.size());
+      out << "- " << engine << ", " << s->spec.label() << " ("
+          << ms(r->stagedStepsMs / static_cast<double>(std::max<std::size_t>(1, steps)))
+          << " ms a step): ";
+      double staged = 0.0;
+      for (std::size_t k = 0; k < r->stages.size(); ++k) {
+        staged += 1000.0 * r->stages[k].second;
+        out << (k ? ", " : "") << r->stages[k].first << " "
+            << fixed(100.0 * 1000.0 * r->stages[k].second / r->stagedStepsMs, 0) << " %";
+      }
+      out << "; outside them " << fixed(100.0 * (1.0 - staged / r->stagedStepsMs), 0) << " %\n";
+    }
+  if (out.str().empty()) return "";
+  return "**Where the step goes** (boxsim on the scenes of the aims: the first repetition's step "
+         "time by stage of A.2, each stage with the contact gathering and narrow phases it runs; "
+         "[the impulse chapter](../chapters/impulse_damped/README.md) says what each costs and "
+         "why):\n\n" + out.str() + "\n";
+}
+
+/// \thesis{§6.1}: the frame rates the thesis reports (Fig. 6.6, the shot pyramid, 25 fps;
+/// Fig. 6.7, the clump, 20 fps; both on a 1500 MHz AMD processor) beside boxsim damped's steps
+/// here, one step a frame.
+std::string realTime(const std::vector<SceneResults>& scenes) {
+  struct Claim {
+    const char* base;
+    double restitution;
+    const char* figure;
+    double fps;
+  };
+  const Claim claims[] = {{"pyramid10_shot", 0.9, "Fig. 6.6", 25.0},
+                          {"pyramid20_shot", 0.9, "Fig. 6.6", 25.0},
+                          {"clump100_ground", 0.5, "Fig. 6.7", 20.0},
+                          {"clump1000", 0.9, "Fig. 6.7 with 1000 cubes, 20 m up", 20.0}};
+  std::ostringstream out;
+  for (const Claim& claim : claims) {
+    const SceneResults* s = sceneOf(scenes, claim.base, claim.restitution);
+    const RunResult* r = s ? find(*s, "boxsim damped") : nullptr;
+    if (!r || r->stepMs.empty()) continue;
+    const double slowest = *std::max_element(r->stepMs.begin(), r->stepMs.end());
+    out << "- " << claim.figure << ", " << s->spec.label() << " (" << s->spec.duration
+        << " s): mean " << ms(r->meanMs()) << " ms a step, " << fixed(1000.0 / r->meanMs(), 0)
+        << " steps a second; 95th percentile " << ms(r->p95Ms()) << " ms ("
+        << fixed(1000.0 / r->p95Ms(), 0) << " a second); slowest step " << ms(slowest)
+        << " ms (" << fixed(1000.0 / slowest, 0) << " a second). The thesis: "
+        << fixed(claim.fps, 0) << " frames a second, "
+        << (1000.0 / r->p95Ms() >= claim.fps ? "reached" : "**not reached**")
+        << " by 95 % of the steps here\n";
+  }
+  if (out.str().empty()) return "";
+  return "**Real time (§6.1)**: the thesis ran the shot pyramid of Fig. 6.6 at 25 frames a "
+         "second and the clump of Fig. 6.7 at 20, on a 1500 MHz AMD processor. It gives neither "
+         "the pyramid's size, nor the clump's number of cubes, nor its time step, and its rate "
+         "counts frames drawn; here a frame is one step of Δt alone, drawing not included, and "
+         "the scenes are this project's readings (boxsim damped, frictionless, sleeping on):\n\n" +
+         out.str() + "\n";
+}
+
 /// The peak resident sets measured (RunResult::peakRssKiB), scene by scene.
 std::string memory(const std::vector<SceneResults>& scenes) {
   std::ostringstream out;
@@ -270,7 +339,7 @@ std::string markdownPage(const std::vector<SceneResults>& scenes, const RunSetup
       << "rest (below " << kRestSpeed << " m/s and " << kRestSpin << " rad/s, whatever the engine "
       << "does); drift is the tower's top box's distance from its start, or the die's horizontal "
       << "travel.\n\n"
-      << "## Summary\n\n" << summary(scenes) << aims(scenes) << memory(scenes)
+      << "## Summary\n\n" << summary(scenes) << aims(scenes) << stages(scenes) << realTime(scenes) << memory(scenes)
       << "## Table\n\n"
       << "| scene | boxes | engine | mean ms/step | median | p95 | rep means | mean ÷ boxsim damped's "
       << "| penetration mean / final / max (mm) | kinetic energy at end (J) | asleep at end "
@@ -300,7 +369,10 @@ std::string scalingData(const std::vector<SceneResults>& scenes, double restitut
   out << "# dt: " << setup.dt << " s, repetitions: " << setup.reps << "\n"
       << "# columns: boxes engine mean_ms median_ms p95_ms rep_min_ms rep_max_ms seconds\n";
   for (const SceneResults& s : scenes) {
-    if (s.spec.base.rfind("clump", 0) != 0 || s.spec.restitution != restitution || !s.spec.sleep) continue;
+    // The clumps of the scaling: "clump" and a count, not the named readings such as
+    // clump100_ground.
+    const bool sized = s.spec.base.rfind("clump", 0) == 0 && s.spec.base.find('_') == std::string::npos;
+    if (!sized || s.spec.restitution != restitution || !s.spec.sleep) continue;
     for (const RunResult& r : s.runs) {
       const auto [lo, hi] = std::minmax_element(r.repMeanMs.begin(), r.repMeanMs.end());
       out << r.measures.bodies << " \"" << r.engine << "\" " << r.meanMs() << " " << r.medianMs()

@@ -140,6 +140,8 @@ void runRepetition(const SceneSpec& spec, PeerEngine& engine, double dt, RunResu
     m.drift = moved.norm();
   }
   result.measures = m;
+  result.stages = engine.stages();
+  result.stagedStepsMs = stepTotal;
 }
 
 void runOnce(const SceneSpec& spec, PeerEngine* engine, double dt) {

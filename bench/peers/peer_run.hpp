@@ -53,6 +53,10 @@ struct RunResult {
   /// alone (peakResidentKiB); -1: not measured.
   long peakRssKiB = -1;
   long startRssKiB = -1;  ///< the same process with the scene built and no engine stepped
+  /// The first repetition's step time by stage (PeerEngine::stages), s, largest first; empty
+  /// for engines that do not report stages.
+  std::vector<std::pair<std::string, double>> stages;
+  double stagedStepsMs = 0.0;  ///< ms, the first repetition's step times summed
 
   double meanMs() const;    ///< over every step of every repetition
   double medianMs() const;  ///< over every step of every repetition

@@ -1,7 +1,9 @@
+#include <algorithm>
 #include <memory>
 #include <stdexcept>
 
 #include "boxsim/core/stepper.hpp"
+#include "boxsim/impulse_damped/damped_integration.hpp"
 #include "boxsim/techniques.hpp"
 #include "peer_engine.hpp"
 
@@ -81,6 +83,9 @@ class BoxsimEngine : public PeerEngine {
     if (method_ == "damped") {
       options_.sleep = scene.sleep;
       stepper_ = makeStepper(method_, options_);
+      profile_ = DampedStepProfile{};
+      if (auto* damped = dynamic_cast<DampedIntegrationStepper*>(stepper_.get()))
+        damped->setProfile(&profile_);
     }
   }
   void step(double dt, double t) override {
@@ -96,6 +101,20 @@ class BoxsimEngine : public PeerEngine {
     }
   }
   int asleep() const override { return asleep_; }
+  std::vector<std::pair<std::string, double>> stages() const override {
+    if (profile_.steps == 0) return {};
+    std::vector<std::pair<std::string, double>> stages = {
+        {"contacts at the step's start", profile_.stepContacts},
+        {"collision passes (A.2 L1)", profile_.collisionPasses},
+        {"contact passes (A.2 L2)", profile_.contactPasses},
+        {"gravity and damping (A.2 L3-L4)", profile_.velocitiesAndDamping},
+        {"FIXCONTACTCONSTRAINTS (A.2 L5)", profile_.fixContacts},
+        {"geometric stability (A.2 L6)", profile_.stability},
+        {"sleeping (§4.5)", profile_.sleeping}};
+    std::stable_sort(stages.begin(), stages.end(),
+                     [](const auto& x, const auto& y) { return x.second > y.second; });
+    return stages;
+  }
 
  private:
   std::string method_;
@@ -103,6 +122,7 @@ class BoxsimEngine : public PeerEngine {
   bool friction_ = false;  ///< the scene's friction on every body
   TechniqueOptions options_;
   std::unique_ptr<Stepper> stepper_;
+  DampedStepProfile profile_;  ///< damped: the stage times of the steps since load()
   World world_;
   int asleep_ = 0;
 };
