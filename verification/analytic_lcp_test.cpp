@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "boxsim/analytic_lcp/analytic_stepper.hpp"
 #include "boxsim/analytic_lcp/contact_matrix.hpp"
 #include "boxsim/analytic_lcp/lcp_enumeration.hpp"
 #include "boxsim/analytic_lcp/lcp_solver.hpp"
@@ -14,6 +15,7 @@
 #include "boxsim/io/scene_builders.hpp"
 #include "seeded_random.hpp"
 #include "test_worlds.hpp"
+#include "workload.hpp"
 
 using namespace boxsim;
 using boxsim::testing::groundWorld;
@@ -324,4 +326,67 @@ TEST_CASE("The contact matrix matches accelerations computed body by body", "[an
     CHECK((A - A.transpose()).cwiseAbs().maxCoeff() == 0.0);
     CHECK(Eigen::SelfAdjointEigenSolver<MatX>(A).eigenvalues().minCoeff() > -1e-9);
   }
+}
+
+TEST_CASE("The thesis' epsilon ends Baraff's loop: at 0 the solvers that refactor per pivot cycle on "
+          "a resting pyramid's LCPs, at 1e-8 and 1e-5 they stop, and every returned force is a "
+          "solution to rounding",
+          "[analytic_lcp][lcp][epsilon]") {
+  // The contact LCPs of a touching pyramid of base 5 (140 contacts) at every fifth step of 1 s
+  // under the analytic method, fewer under a reduced workload (the s3_3_epsilon_sweep figure
+  // runs more scenes and every solver).
+  World world = groundWorld();
+  PyramidSpec spec;
+  spec.base = 5;
+  addPyramid(world, spec);
+  std::vector<std::pair<MatX, VecX>> problems;
+  AnalyticStepper stepper;
+  const long samples = std::max(3L, testing::scaledCount(12));
+  for (int k = 0; k < 5 * samples; ++k) {
+    if (k % 5 == 0) {
+      MatX A;
+      VecX b;
+      contactMatrix(world, pointContacts(world, findContacts(world, 1e-3)), A, b);
+      problems.emplace_back(A, b);
+    }
+    stepper.step(world, 1.0 / 60.0);
+  }
+  const auto run = [&problems](double epsilon, LcpLinearSolver solver, bool snap) {
+    LcpParams params;
+    params.epsilon = epsilon;
+    params.linearSolver = solver;
+    params.snapToBounds = snap;
+    int cycled = 0;
+    long pivots = 0;
+    double worst = 0.0;
+    for (const auto& [A, b] : problems) {
+      const LcpResult r = solveContactLcp(A, b, params);
+      cycled += r.converged ? 0 : 1;
+      pivots += r.pivots;
+      worst = std::max(worst, lcpViolation(A, b, r.f));
+    }
+    INFO("epsilon " << epsilon << ", solver " << lcpLinearSolverName(solver) << ", snap " << snap
+                    << ": " << cycled << " of " << problems.size() << " cycled, " << pivots
+                    << " pivots, worst violation " << worst);
+    // Cycling or not, what is returned solves the LCP to rounding: the loop at epsilon 0 chases
+    // accelerations of rounding size.
+    CHECK(worst < 1e-10);
+    return std::pair<int, long>(cycled, pivots);
+  };
+  const int n = static_cast<int>(problems.size());
+  for (const double epsilon : {1e-8, 1e-5}) {
+    for (const bool snap : {false, true}) {
+      CHECK(run(epsilon, LcpLinearSolver::IncrementalCholesky, snap).first == 0);
+      CHECK(run(epsilon, LcpLinearSolver::GaussianElimination, snap).first == 0);
+    }
+  }
+  // At epsilon 0, LDLT and Gaussian elimination (the thesis' solver) cycle on most of the
+  // pyramid's problems, and take several times the pivots; the grown Cholesky factor with the
+  // bounds snapped converges on every one.
+  const auto ldlt0 = run(0.0, LcpLinearSolver::Ldlt, true);
+  const auto gauss0 = run(0.0, LcpLinearSolver::GaussianElimination, true);
+  CHECK(2 * ldlt0.first > n);
+  CHECK(2 * gauss0.first > n);
+  CHECK(ldlt0.second > 5 * run(1e-5, LcpLinearSolver::Ldlt, true).second);
+  CHECK(run(0.0, LcpLinearSolver::IncrementalCholesky, true).first == 0);
 }

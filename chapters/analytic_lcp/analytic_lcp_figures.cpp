@@ -4,7 +4,8 @@
 // all: collision events of the dropped die per frame under the analytic method with and
 // without sticky collisions and under the basic colliding technique (§4.3); the load each
 // level of a resting tower carries under its LCP forces; and the LCP solve time against the
-// number of contacts for each linear solver. Timings are measurements of this machine.
+// number of contacts for each linear solver; and §3.3.1's ε swept against every linear solver on
+// the contact LCPs of towers, pyramids and uneven stacks. Timings are measurements of this machine.
 #include <CLI/CLI.hpp>
 
 #include <chrono>
@@ -148,6 +149,119 @@ void writeSolveTimes(const std::string& out) {
     text << "\n";
   }
   writeFileAtomically(out + "/s3_3_lcp_solve_time.dat", text.str());
+}
+
+/// A stack of `count` boxes of uneven sizes on the ground, each turned about y and set off the
+/// centre of the one below by up to 0.6 of its half width, touching: the random stacks of the ε
+/// sweep. The numbers are fractional parts of multiples of irrational constants (a Weyl
+/// sequence from `seed`), the same on every machine. Some stacks stand, some topple.
+World unevenStack(int seed, int count) {
+  World world;
+  world.addGround(0.0, 50.0);
+  double k = 7.0 * seed;
+  const auto next = [&k] {
+    k += 1.0;
+    return k * 0.6180339887498949 - std::floor(k * 0.6180339887498949);
+  };
+  double top = 0.0, below = 0.5;
+  Vec3 centre = Vec3::Zero();
+  for (int i = 0; i < count; ++i) {
+    const Vec3 half(0.25 + 0.35 * next(), 0.25 + 0.35 * next(), 0.25 + 0.35 * next());
+    RigidBody box = RigidBody::box(half, 8.0 * half.prod());
+    if (i > 0) centre += Vec3((next() - 0.5) * 1.2 * below, 0.0, (next() - 0.5) * 1.2 * below);
+    box.s.x = Vec3(centre.x(), top + half.y(), centre.z());
+    box.s.q = Quat(Eigen::AngleAxisd(2.0 * kPi * next(), Vec3::UnitY()));
+    box.updateDerived();
+    world.add(box, "box" + std::to_string(i));
+    top += 2.0 * half.y();
+    below = std::min(half.x(), half.z());
+  }
+  return world;
+}
+
+/// One contact LCP of the ε sweep and the scene family it came from.
+struct SweepProblem {
+  MatX A;
+  VecX b;
+  int family = 0;  ///< 0 towers, 1 pyramids, 2 uneven stacks
+};
+
+/// The contact LCPs (contacts closer than 1 mm) of every fifth step of 1 s of `world` under
+/// the analytic method.
+void collectProblems(World world, int family, std::vector<SweepProblem>& problems) {
+  AnalyticStepper stepper;
+  for (int k = 0; k < 60; ++k) {
+    if (k % 5 == 0) {
+      const std::vector<PointContact> contacts = pointContacts(world, findContacts(world, 1e-3));
+      if (!contacts.empty()) {
+        SweepProblem p;
+        contactMatrix(world, contacts, p.A, p.b);
+        p.family = family;
+        problems.push_back(std::move(p));
+      }
+    }
+    stepper.step(world, kDt);
+  }
+}
+
+/// §3.3.1's ε, swept: ε ∈ {0, 1e-8, 1e-5} m/s² × every linear solver × snapping to the bounds
+/// on and off, on the contact LCPs of resting towers (2, 5, 10 cubes), touching pyramids (base
+/// 3 and 5) and 20 uneven stacks along 1 s of the analytic method. Per setting: solves that hit
+/// the pivot guard (cycling), per family; pivots; the worst scaled LCP violation of the forces
+/// returned, converged or not.
+void writeEpsilonSweep(const std::string& out) {
+  std::vector<SweepProblem> problems;
+  for (int count : {2, 5, 10}) {
+    World world;
+    world.addGround(0.0, 50.0);
+    addTower(world, TowerSpec{count});
+    collectProblems(world, 0, problems);
+  }
+  for (int base : {3, 5}) {
+    World world;
+    world.addGround(0.0, 50.0);
+    PyramidSpec spec;
+    spec.base = base;
+    addPyramid(world, spec);
+    collectProblems(world, 1, problems);
+  }
+  for (int seed = 1; seed <= 20; ++seed) collectProblems(unevenStack(seed, 2 + seed % 6), 2, problems);
+  int perFamily[3] = {0, 0, 0};
+  for (const SweepProblem& p : problems) ++perFamily[p.family];
+  std::ostringstream text;
+  text << "# s3_3_epsilon_sweep: " << problems.size() << " contact LCPs (towers " << perFamily[0]
+       << ", pyramids " << perFamily[1] << ", uneven stacks " << perFamily[2]
+       << "), pivot guard " << LcpParams{}.maxPivotsPerContact << " n\n"
+       << "# solver: 0 incremental_cholesky, 1 ldlt, 2 complete_orthogonal, 3 gaussian_elimination\n"
+       << "# columns: epsilon snap solver cycled_towers cycled_pyramids cycled_stacks cycled_percent "
+          "mean_pivots worst_violation\n";
+  const LcpLinearSolver solvers[] = {LcpLinearSolver::IncrementalCholesky, LcpLinearSolver::Ldlt,
+                                     LcpLinearSolver::CompleteOrthogonal,
+                                     LcpLinearSolver::GaussianElimination};
+  for (const double epsilon : {0.0, 1e-8, 1e-5})
+    for (const bool snap : {false, true})
+      for (int s = 0; s < 4; ++s) {
+        LcpParams params;
+        params.epsilon = epsilon;
+        params.snapToBounds = snap;
+        params.linearSolver = solvers[s];
+        int cycled[3] = {0, 0, 0};
+        long pivots = 0;
+        double worst = 0.0;
+        for (const SweepProblem& p : problems) {
+          const LcpResult r = solveContactLcp(p.A, p.b, params);
+          cycled[p.family] += r.converged ? 0 : 1;
+          pivots += r.pivots;
+          worst = std::max(worst, lcpViolation(p.A, p.b, r.f));
+        }
+        char line[200];
+        std::snprintf(line, sizeof line, "%g %d %d %d %d %d %.3f %.2f %.3e\n", epsilon, int(snap), s,
+                      cycled[0], cycled[1], cycled[2],
+                      100.0 * (cycled[0] + cycled[1] + cycled[2]) / double(problems.size()),
+                      double(pivots) / double(problems.size()), worst);
+        text << line;
+      }
+  writeFileAtomically(out + "/s3_3_epsilon_sweep.dat", text.str());
 }
 
 /// The deepest overlap (m) of any pair closer than 1 mm, 0 when none overlaps.
@@ -298,6 +412,7 @@ int main(int argc, char** argv) {
     writeTowerForces(out);
     writeSolveTimes(out);
     writeNoClamp(out);
+    writeEpsilonSweep(out);
     writePyramidStability(out);
     renderStabilityFigures(out);
   } catch (const std::exception& e) {
