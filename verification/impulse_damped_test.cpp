@@ -252,11 +252,14 @@ TEST_CASE("The plain impulse step, measured on the tower and the pyramid: the to
   }
   INFO("plain impulse: tower drift " << drift << " m; pyramid sag " << sag << " m, deepest penetration "
                                      << deepest << " m, kinetic energy after 1 s up to " << kinetic << " J");
-  // An exactly aligned stack gives the plain step nothing to chatter about.
-  CHECK(drift < 1e-3);
+  // An exactly aligned stack gives the plain step nothing to chatter about: not a bit of
+  // motion, as under damped integration.
+  CHECK(drift == 0.0);
   // The pyramid does chatter: it never comes to rest, but it stands (sag and penetration stay
-  // within a box's hundredth, the gravity step g Δt² = 2.7 mm times a few).
+  // within a box's hundredth, the gravity step g Δt² = 2.7 mm times a few). It sags by more
+  // than a millimetre (5 mm measured), where the damped pyramid's apex does not move at all.
   CHECK(kinetic > 1e-3);
+  CHECK(sag > 1e-3);
   CHECK(sag < 1e-2);
   CHECK(deepest < 1e-2);
 }
