@@ -8,11 +8,13 @@
 // the contact LCPs of towers, pyramids and uneven stacks. Timings are measurements of this machine.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
+#include <stdexcept>
 
 #include "boxsim/analytic_lcp/analytic_stepper.hpp"
 #include "boxsim/analytic_lcp/contact_matrix.hpp"
@@ -366,6 +368,48 @@ void renderStabilityFigures(const std::string& out) {
   }
 }
 
+/// Fig. 5.3's right panel, the contact plane seen from above (x and z, m): the outlines of the
+/// lower cube's top face and the upper cube's bottom face, the contact points between them, and
+/// the upper cube's centre of mass. Blocks for gnuplot's `index`: 0 lower outline, 1 upper
+/// outline, 2 the contact points as a closed polygon, 3 the centre of mass.
+void writeFig5_3ContactPlane(const std::string& out) {
+  World world;
+  world.addGround(0.0, 50.0);
+  addOneCornerOver(world);
+  const int lower = 1, upper = 2;  // addOneCornerOver adds "lower", then "upper", after the ground
+  const auto outline = [&world](int k, double ySign) {
+    const RigidBody& body = world.bodies[static_cast<std::size_t>(k)];
+    const Vec3 h = body.halfExtents;
+    std::ostringstream block;
+    for (const auto& [sx, sz] : {std::pair(-1, -1), {1, -1}, {1, 1}, {-1, 1}, {-1, -1}}) {
+      const Vec3 corner = body.s.x + body.R * Vec3(sx * h.x(), ySign * h.y(), sz * h.z());
+      block << corner.x() << " " << corner.z() << "\n";
+    }
+    return block.str();
+  };
+  std::vector<Vec3> points;
+  for (const ContactManifold& m : findContacts(world, 1e-6))
+    if ((m.a == lower && m.b == upper) || (m.a == upper && m.b == lower))
+      for (int i = 0; i < m.count; ++i) points.push_back(m.points[static_cast<std::size_t>(i)].position);
+  if (points.empty()) throw std::runtime_error("fig5_3: the upper cube does not touch the lower one");
+  Vec3 mean = Vec3::Zero();
+  for (const Vec3& p : points) mean += p / double(points.size());
+  std::sort(points.begin(), points.end(), [&mean](const Vec3& p, const Vec3& q) {
+    return std::atan2(p.z() - mean.z(), p.x() - mean.x()) < std::atan2(q.z() - mean.z(), q.x() - mean.x());
+  });
+  points.push_back(points.front());
+  const Vec3 com = world.bodies[upper].s.x;
+  std::ostringstream text;
+  text << "# fig5_3_contact_plane: thesis Fig. 5.3, right, seen from above; columns: x_m z_m\n"
+       << "# contact_points: " << points.size() - 1 << "\n"
+       << "# lower cube, top face\n" << outline(lower, 1.0) << "\n\n"
+       << "# upper cube, bottom face\n" << outline(upper, -1.0) << "\n\n"
+       << "# contact points (closed)\n";
+  for (const Vec3& p : points) text << p.x() << " " << p.z() << "\n";
+  text << "\n\n# upper cube, centre of mass\n" << com.x() << " " << com.z() << "\n";
+  writeFileAtomically(out + "/fig5_3_contact_plane.dat", text.str());
+}
+
 /// Fig. 5.6: a one-box-deep pyramid of base 9 with 5 cm gaps in its rows (side contacts would
 /// make every box unstable, normals off the y axis) and its bottom centre box removed. One row
 /// per box: its centre and half size in the side view, whether it is geometrically stable, and
@@ -415,6 +459,7 @@ int main(int argc, char** argv) {
     writeEpsilonSweep(out);
     writePyramidStability(out);
     renderStabilityFigures(out);
+    writeFig5_3ContactPlane(out);
   } catch (const std::exception& e) {
     std::cerr << "analytic_lcp_figures: " << e.what() << "\n";
     return 1;
