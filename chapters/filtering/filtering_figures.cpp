@@ -146,7 +146,9 @@ void writeMeasures(const std::vector<SceneRun>& runs, const std::string& dir) {
            "-" + number(r.impactTo) + " s\n";
   out += "# columns: index scene filter resting_bodies chatter_position_m2 chatter_angle_rad2 squirm_position_m_per_s "
          "squirm_angle_rad_per_s pop_position_m pop_angle_rad overlap_box_box_m overlap_box_ground_m "
-         "peak_acceleration_m_per_s2 peak_angular_acceleration_rad_per_s2 peak_acceleration_over_raw\n";
+         "overlap_introduced_box_box_m overlap_introduced_box_ground_m "
+         "peak_acceleration_m_per_s2 peak_angular_acceleration_rad_per_s2 peak_acceleration_over_raw "
+         "displayed_speed_position_m_per_s squirm_share_position\n";
   int index = 0;
   for (const SceneRun& r : runs) {
     const char* names[] = {"raw", "box", "envelope"};
@@ -158,7 +160,8 @@ void writeMeasures(const std::vector<SceneRun>& runs, const std::string& dir) {
       for (double value : {m.motion.chatterPosition, m.motion.chatterAngle, m.motion.squirmPosition,
                            m.motion.squirmAngle, m.pop.position, m.pop.angle, m.overlap.boxBox,
                            m.overlap.boxGround, m.introduced.boxBox, m.introduced.boxGround, m.peak.linear,
-                           m.peak.angular, m.peak.linear / rawPeak})
+                           m.peak.angular, m.peak.linear / rawPeak, m.motion.displayedSpeedPosition,
+                           m.motion.squirmSharePosition()})
         out += " " + number(value);
       out += "\n";
     }

@@ -110,16 +110,20 @@ MotionMeasures motionMeasures(const Trajectory& displayed, FrameWindow window,
   lowPass.halfWidth = params.squirmHalfWidth;
   const Trajectory slow = boxFilter(displayed, lowPass);
   const double seconds = f[window.end - 1].t - f[window.begin].t;
-  double pathX = 0.0, pathQ = 0.0;
+  double pathX = 0.0, pathQ = 0.0, shownX = 0.0, shownQ = 0.0;
   for (std::size_t b : bodies) {
     for (std::size_t k = window.begin + 1; k < window.end; ++k) {
       pathX += (slow.frames[k].x[b] - slow.frames[k - 1].x[b]).norm();
       pathQ += rotationAngle(slow.frames[k - 1].q[b], slow.frames[k].q[b]);
+      shownX += (f[k].x[b] - f[k - 1].x[b]).norm();
+      shownQ += rotationAngle(f[k - 1].q[b], f[k].q[b]);
     }
   }
   const double perBodySecond = static_cast<double>(bodies.size()) * seconds;
   m.squirmPosition = pathX / perBodySecond;
   m.squirmAngle = pathQ / perBodySecond;
+  m.displayedSpeedPosition = shownX / perBodySecond;
+  m.displayedSpeedAngle = shownQ / perBodySecond;
   return m;
 }
 

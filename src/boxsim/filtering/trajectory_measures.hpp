@@ -67,7 +67,22 @@ struct MotionMeasures {
   double squirmPosition = 0.0;
   /// Squirm of orientation: the same for the angles turned, rad/s.
   double squirmAngle = 0.0;
+  /// Displayed speed of position: the path length per second of the displayed poses as they
+  /// are, frame to frame, over the window, m/s (mean over the bodies): all the motion a viewer
+  /// sees of a body that should stand still, jitter and wandering together.
+  double displayedSpeedPosition = 0.0;
+  /// Displayed speed of orientation: the same for the angles turned, rad/s.
+  double displayedSpeedAngle = 0.0;
   std::size_t bodies = 0;  ///< how many bodies the means are over (0: every field 0)
+  /// The share of the displayed motion that is squirm, squirmPosition / displayedSpeedPosition
+  /// (0 when nothing moves): near 0 when a body jitters back and forth about a place, near 1
+  /// when all it shows is slow wandering. A low-pass filter leaves the squirm and removes the
+  /// jitter, so this share, unlike the squirm itself, tells whether the motion left looks like
+  /// chatter or like squirm (\thesis{§5.5}: "objects that used to chatter will often appear to
+  /// squirm instead").
+  double squirmSharePosition() const {
+    return displayedSpeedPosition > 0.0 ? squirmPosition / displayedSpeedPosition : 0.0;
+  }
 };
 
 /// Parameters of the measures.
