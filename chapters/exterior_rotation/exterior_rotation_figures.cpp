@@ -4,8 +4,9 @@
 // all, and renders the 3D strips itself: the drift of the sticking contacts of Figs. 6.1-6.3
 // against time under each integrator at dt = 1/60 s; the largest drift over each scene's
 // window against dt, with fitted slopes; the top box's path of Fig. 6.1 against its circle;
-// and the cost of one step of each integrator. Timings are measurements of this machine; every
-// other number is deterministic.
+// the cost of one step of each integrator; and Figs. 6.2 and 6.3 under the thesis' own model,
+// frictionless unilateral LCP forces held by forward Euler. Timings are measurements of this
+// machine; every other number is deterministic.
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -16,6 +17,7 @@
 #include <sstream>
 
 #include "boxsim/exterior_rotation/sticking_run.hpp"
+#include "boxsim/exterior_rotation/unilateral_run.hpp"
 #include "boxsim/io/atomic_file.hpp"
 #include "boxsim/io/recorder.hpp"
 #include "boxsim/io/render.hpp"
@@ -234,6 +236,69 @@ void renderStrips(const std::string& out) {
 
 }  // namespace
 
+/// s6_2_unilateral and s6_2_unilateral_vs_dt: Figs. 6.2 and 6.3 in the thesis' own model,
+/// frictionless unilateral LCP forces held over the step (unilateral_run.hpp), beside the
+/// sticking model's forward Euler. Gaps + separated, − interpenetrating.
+void writeUnilateral(const std::string& out) {
+  const StickingScene scenes[] = {pivotingBox(), twoFrames()};
+  std::ostringstream text;
+  text << "# s6_2_unilateral: the hinge gaps of Figs. 6.2 (pivoting_box) and 6.3 (two_frames) at dt 1/60 s: frictionless "
+          "unilateral LCP forces (Baraff, epsilon 1e-5, clamp, Gaussian elimination) held over the step by forward or "
+          "semi-implicit Euler, no collision handling; and the sticking model's forward Euler\n"
+       << "# gap: + separated, - interpenetrating; pivot: the table's edge; hinge: A's edge under B (Fig. 6.3, else 0)\n"
+       << "# columns: t_s pivot_gap_m hinge_gap_m penetration_m\n"
+       << "# blocks (gnuplot index): pivoting_box unilateral FE, SIE, sticking FE; two_frames the same\n";
+  for (const StickingScene& scene : scenes) {
+    for (const Integrator integrator : {Integrator::ForwardEuler, Integrator::SemiImplicitEuler}) {
+      UnilateralParams params;
+      params.integrator = integrator;
+      const UnilateralRun run = runUnilateral(scene, kDt, stepsOf(scene, kDt), params);
+      text << "# " << scene.name << ", unilateral, " << integratorName(integrator) << "\n";
+      for (const UnilateralSample& s : run.samples)
+        text << num(s.t) << " " << num(-s.hingeDepth[0]) << " " << num(s.hingeDepth.size() > 1 ? -s.hingeDepth[1] : 0.0)
+             << " " << num(s.penetration) << "\n";
+      text << "\n\n";
+    }
+    const StickingRun sticking = runSticking(scene, StickingMethod::ForwardEuler, kDt, stepsOf(scene, kDt));
+    text << "# " << scene.name << ", sticking, forward_euler\n";
+    for (const StickingSample& s : sticking.samples)
+      text << num(s.t) << " " << num(s.contactGap[scene.pivots[0]]) << " "
+           << num(scene.pivots.size() > 1 ? s.contactGap[scene.pivots[1]] : 0.0) << " " << num(s.penetration) << "\n";
+    text << "\n\n";
+  }
+  writeFileAtomically(out + "/s6_2_unilateral.dat", text.str());
+
+  // Against dt, forward Euler: Fig. 6.2's largest pivot gap and overlap, Fig. 6.3's deepest
+  // pivot overlap and largest hinge gap.
+  std::vector<double> series[4];
+  for (const double dt : kSweep) {
+    double boxGap = 0.0, boxOverlap = 0.0, pivotOverlap = 0.0, hingeGap = 0.0;
+    for (const UnilateralSample& s : runUnilateral(scenes[0], dt, stepsOf(scenes[0], dt)).samples) {
+      boxGap = std::max(boxGap, -s.hingeDepth[0]);
+      boxOverlap = std::max(boxOverlap, s.penetration);
+    }
+    for (const UnilateralSample& s : runUnilateral(scenes[1], dt, stepsOf(scenes[1], dt)).samples) {
+      pivotOverlap = std::max(pivotOverlap, s.hingeDepth[0]);
+      hingeGap = std::max(hingeGap, -s.hingeDepth[1]);
+    }
+    series[0].push_back(boxGap);
+    series[1].push_back(boxOverlap);
+    series[2].push_back(pivotOverlap);
+    series[3].push_back(hingeGap);
+  }
+  std::ostringstream sweep;
+  sweep << "# s6_2_unilateral_vs_dt: frictionless unilateral LCP forces under forward Euler, the extremes over each "
+           "scene's window against dt\n"
+        << "# slopes (least squares, log-log): fig6_2_pivot_gap " << num(convergenceOrder(kSweep, series[0]))
+        << ", fig6_2_overlap " << num(convergenceOrder(kSweep, series[1])) << ", fig6_3_pivot_overlap "
+        << num(convergenceOrder(kSweep, series[2])) << ", fig6_3_hinge_gap " << num(convergenceOrder(kSweep, series[3]))
+        << "\n# columns: dt_s fig6_2_pivot_gap_m fig6_2_overlap_m fig6_3_pivot_overlap_m fig6_3_hinge_gap_m\n";
+  for (std::size_t k = 0; k < kSweep.size(); ++k)
+    sweep << num(kSweep[k]) << " " << num(series[0][k]) << " " << num(series[1][k]) << " " << num(series[2][k]) << " "
+          << num(series[3][k]) << "\n";
+  writeFileAtomically(out + "/s6_2_unilateral_vs_dt.dat", sweep.str());
+}
+
 int main(int argc, char** argv) {
   CLI::App app{"Data and frames of the exterior rotation chapter's figures"};
   std::string out = ".";
@@ -247,6 +312,7 @@ int main(int argc, char** argv) {
     writePenetrationVsTime(out, twoFrames(), "fig6_3_penetration_vs_time");
     writeSweep(out);
     writeTopBoxPath(out);
+    writeUnilateral(out);
     if (!skipTiming) writeCost(out);
     renderStrips(out);
   } catch (const std::exception& e) {
