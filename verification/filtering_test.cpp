@@ -73,6 +73,21 @@ const Trajectory& chatteringPyramid() {
   return pyramid;
 }
 
+/// The resting bodies of a raw run over [t0, t1] s and its measures there.
+struct RestingRun {
+  FrameWindow window;
+  std::vector<std::size_t> bodies;
+  MotionMeasures raw;
+};
+
+RestingRun restingRun(const Trajectory& raw, double t0, double t1) {
+  RestingRun r;
+  r.window = frameWindow(raw, t0, t1);
+  r.bodies = restingBodies(raw, r.window);
+  r.raw = motionMeasures(raw, r.window, r.bodies);
+  return r;
+}
+
 /// GSL's centred moving mean of `values` over ±h samples, truncated at the ends: what the box
 /// filter computed offline before it was streamed.
 std::vector<double> gslMovingMean(const std::vector<double>& values, std::size_t h) {
@@ -190,10 +205,8 @@ TEST_CASE("On the resting die the box filter lowers chatter at least 20-fold, th
           "filter stills it",
           "[filtering][chatter]") {
   const Trajectory& raw = chatteringDie();
-  const FrameWindow rest = frameWindow(raw, 10.5, 12.0);
-  const std::vector<std::size_t> resting = restingBodies(raw, rest);
+  const auto [rest, resting, before] = restingRun(raw, 10.5, 12.0);
   REQUIRE(resting.size() == 1);
-  const MotionMeasures before = motionMeasures(raw, rest, resting);
   REQUIRE(before.chatterPosition > 0.0);  // the plain step does chatter here (micrometres)
   const MotionMeasures box = motionMeasures(boxFilter(raw), rest, resting);
   // Measured: 37-fold (position), 22-fold (rotation). A lone one-frame spike of the position
@@ -214,10 +227,8 @@ TEST_CASE("On the standing pyramid, whose chatter is visible, the box filter tur
           "squirm and draws boxes into each other, and the envelope filter pops by its radius",
           "[filtering][chatter][pyramid]") {
   const Trajectory& raw = chatteringPyramid();
-  const FrameWindow rest = frameWindow(raw, 1.0, 4.5);
-  const std::vector<std::size_t> resting = restingBodies(raw, rest);
+  const auto [rest, resting, before] = restingRun(raw, 1.0, 4.5);
   REQUIRE(resting.size() >= 10);  // 16 of the 55 cubes measured
-  const MotionMeasures before = motionMeasures(raw, rest, resting);
   // Visible: a mean second difference of a millimetre (1e-6 m^2), where the die's is 6e-8 mm.
   REQUIRE(before.chatterPosition > 1e-7);
   const Trajectory boxed = boxFilter(raw);
