@@ -14,7 +14,7 @@ do for [kind in "png svg"] {
   set xlabel "x (m)"
   set ylabel "z (m)"
   set xrange [-0.75:1.5]
-  set yrange [-0.75:1.5]
+  set yrange [-0.75:2.0]
   set key top left box opaque
   set style fill transparent solid 0.35 noborder
   plot data index 0 using 1:2 with lines lw 2 lc rgb "#444444" title "lower cube, top face", \
