@@ -20,10 +20,6 @@ void requirePoseCounts(const TrajectoryFrame& f, std::size_t bodies) {
                                 " bodies; filter a trajectory as readTrajectory() returns it");
 }
 
-struct WorkspaceFree {
-  void operator()(gsl_movstat_workspace* w) const { gsl_movstat_free(w); }
-};
-
 /// The header lines boxFilter() adds to a run's.
 std::map<std::string, std::string> boxFilterMeta(std::map<std::string, std::string> meta,
                                                  const BoxFilterParams& params) {
@@ -40,6 +36,12 @@ std::map<std::string, std::string> boxFilterMeta(std::map<std::string, std::stri
 /// GSL's moving-mean accumulators, one per coordinate of every movable body, each in a
 /// workspace of its own (gsl_movstat_alloc_with_size() sizes the accumulator's state).
 struct BoxFilterStage::Accumulators {
+  /// Frees a GSL workspace. A member, not in the file's anonymous namespace: a type of
+  /// internal linkage in a field of this externally visible class would draw
+  /// -Wsubobject-linkage.
+  struct WorkspaceFree {
+    void operator()(gsl_movstat_workspace* w) const { gsl_movstat_free(w); }
+  };
   std::vector<std::unique_ptr<gsl_movstat_workspace, WorkspaceFree>> workspaces;
 
   Accumulators(std::size_t count, std::size_t h) {
