@@ -341,15 +341,13 @@ std::vector<ImpulseContact>& ContactGathering::begin(World& world, double dt, Gr
 void ContactGathering::beginStep(const World& world, double dt, GravityMode predict,
                                  double margin) {
   if (params_.gathering != ContactGatheringMode::OncePerStep) return;
-  const Vec3 gravityStep =
-      predict == GravityMode::VelocityPlusGravity ? Vec3(dt * world.gravity) : Vec3(Vec3::Zero());
+  const Vec3 gravityStep = gravityVelocity(world, predict, dt);
   if (margin != cacheMargin_ || !cacheCovers(world)) buildCache(world, gravityStep, dt, margin);
 }
 
 std::vector<ImpulseContact>& ContactGathering::gather(World& world, double dt, GravityMode predict,
                                                       double margin) {
-  const Vec3 gravityStep =
-      predict == GravityMode::VelocityPlusGravity ? Vec3(dt * world.gravity) : Vec3(Vec3::Zero());
+  const Vec3 gravityStep = gravityVelocity(world, predict, dt);
   if (params_.gathering == ContactGatheringMode::EveryPass) {
     // A.2 L2: integrateObjectPositions, remembering where every body was; L3: gatherCollisions.
     saved_ = predictPositions(world, dt, gravityStep);

@@ -113,6 +113,11 @@ enum class GravityMode {
   VelocityPlusGravity,  ///< v + g Δt: what the body will have once gravity is integrated
 };
 
+/// The velocity a GravityMode adds over a step of dt s: g Δt (m/s) or zero.
+inline Vec3 gravityVelocity(const World& world, GravityMode gravity, double dt) {
+  return gravity == GravityMode::VelocityPlusGravity ? Vec3(dt * world.gravity) : Vec3(Vec3::Zero());
+}
+
 /// The pose of one body with the derived values that depend on it only, so putting it back
 /// needs no recomputation of R and Iinv.
 struct SavedPose {

@@ -28,11 +28,6 @@ struct BodyMomenta {
   }
 };
 
-/// The velocity COLLIDE adds for the gravity trick (A.2 L1-L4): g Δt or zero.
-Vec3 gravityVelocity(const World& world, GravityMode gravity, double dt) {
-  return gravity == GravityMode::VelocityPlusGravity ? Vec3(dt * world.gravity) : Vec3(Vec3::Zero());
-}
-
 /// A.2 L5-L8: both bodies get deltaV, then the Newtonian impulse at the contact; returns j.
 double impulseWithGravity(RigidBody& a, RigidBody& b, const ImpulseContact& contact,
                           double restitution, const Vec3& deltaV, FrictionTotals* totals,
