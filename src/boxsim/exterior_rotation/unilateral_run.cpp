@@ -4,7 +4,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "boxsim/analytic_lcp/contact_matrix.hpp"
 #include "boxsim/collision/broad_phase.hpp"
 #include "boxsim/collision/contact_manifold.hpp"
 #include "boxsim/collision/obb.hpp"
@@ -21,7 +20,7 @@ double signedDepth(const World& world, int a, int b) {
   return m.depth;
 }
 
-UnilateralSample sample(const StickingScene& scene, const World& world, double t, int contacts) {
+UnilateralSample sample(const StickingScene& scene, const World& world, double t) {
   UnilateralSample s;
   s.t = t;
   s.penetration = deepestPenetration(world);
@@ -29,7 +28,6 @@ UnilateralSample sample(const StickingScene& scene, const World& world, double t
     const StickingContact& c = scene.contacts[static_cast<std::size_t>(pivot)];
     s.hingeDepth.push_back(signedDepth(world, c.a, c.b));
   }
-  s.contacts = contacts;
   return s;
 }
 
@@ -42,19 +40,12 @@ UnilateralRun runUnilateral(const StickingScene& scene, double dt, int steps, co
   UnilateralRun run;
   run.end = scene.world;
   World& world = run.end;
-  run.samples.push_back(sample(scene, world, 0.0, 0));
+  run.samples.push_back(sample(scene, world, 0.0));
+  const AnalyticStepper forces(params.analytic);
   for (int step = 1; step <= steps; ++step) {
     // The forces of this instant (Baraff's LCP, §3.3.1's ε and clamp), held over the step.
-    const std::vector<PointContact> contacts = pointContacts(world, findContacts(world, params.contactMargin));
-    std::vector<Wrench> wrenches;
-    if (!contacts.empty()) {
-      MatX A;
-      VecX b;
-      contactMatrix(world, contacts, A, b);
-      wrenches = contactWrenches(world, contacts, solveContactLcp(A, b, params.lcp).f);
-    }
-    integrateWorld(world, dt, params.integrator, {}, wrenches);
-    run.samples.push_back(sample(scene, world, step * dt, static_cast<int>(contacts.size())));
+    integrateWorld(world, dt, params.integrator, {}, forces.contactWrenches(world, dt));
+    run.samples.push_back(sample(scene, world, step * dt));
     run.maxPenetration = std::max(run.maxPenetration, run.samples.back().penetration);
   }
   return run;

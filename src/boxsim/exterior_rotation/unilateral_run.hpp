@@ -1,9 +1,9 @@
 /// \file
 /// The exterior rotation problem in the thesis' own setting (\thesis{§6.2}): the boxes of
 /// Figs. 6.1–6.3 under frictionless, unilateral contact forces, the LCP of Baraff (1994) with
-/// \thesis{§3.3.1}'s ε and clamp (analytic_lcp/), solved for the instant at the start of each
-/// step and held over it by forward Euler, "the most basic forward Euler scheme used in our
-/// implementation". No collision handling and no drift correction: what integration alone does
+/// \thesis{§3.3.1}'s ε and clamp as the analytic method solves it (AnalyticStepper::
+/// contactWrenches), for the instant at the start of each step, and held over the step by
+/// forward Euler, "the most basic forward Euler scheme used in our implementation". No collision handling and no drift correction: what integration alone does
 /// to the contacts is measured, as the thesis states it ("integration of these forces may lead
 /// to incorrectly interpenetrating or separating objects").
 ///
@@ -14,9 +14,10 @@
 /// forces "calculated assuming no friction", §5.4). The chapter page compares the two.
 #pragma once
 
+#include <limits>
 #include <vector>
 
-#include "boxsim/analytic_lcp/lcp_solver.hpp"
+#include "boxsim/analytic_lcp/analytic_stepper.hpp"
 #include "boxsim/core/integrator.hpp"
 #include "boxsim/exterior_rotation/sticking_scene.hpp"
 
@@ -24,14 +25,18 @@ namespace boxsim {
 
 /// Settings of runUnilateral().
 struct UnilateralParams {
-  /// The LCP: the thesis' ε (1e-5 m/s²) and clamp; Gaussian elimination, the thesis' solver.
-  LcpParams lcp = [] {
-    LcpParams p;
-    p.linearSolver = LcpLinearSolver::GaussianElimination;
+  /// The contact forces: the analytic method's (AnalyticStepper::contactWrenches: the contact
+  /// areas within its margin, Baraff's LCP) with the thesis' ε and clamp, Gaussian elimination
+  /// (its solver) and no drift correction (it had none). Every contact point within the margin
+  /// takes part, however fast it approaches (restingSpeed infinite): with no collision loop
+  /// here, a contact left to it would get no force at all.
+  AnalyticParams analytic = [] {
+    AnalyticParams p;
+    p.lcp.linearSolver = LcpLinearSolver::GaussianElimination;
+    p.driftCorrection = false;
+    p.restingSpeed = std::numeric_limits<double>::infinity();
     return p;
   }();
-  /// m: contacts closer than this get a row of the LCP (the analytic method's contact margin).
-  double contactMargin = 1e-3;
   /// How the forces are held over the step: forward Euler, as the thesis.
   Integrator integrator = Integrator::ForwardEuler;
 };
@@ -45,7 +50,6 @@ struct UnilateralSample {
   /// bodies, m: the separating-axis overlap when they overlap (> 0), minus their distance
   /// along the best separating axis when apart (< 0), 0 when touching.
   std::vector<double> hingeDepth;
-  int contacts = 0;  ///< point contacts in the step's LCP
 };
 
 /// The result of runUnilateral().
