@@ -24,14 +24,14 @@ Integrator parseIntegrator(const std::string& name) {
       "'; use forward_euler, semi_implicit_euler, runge_kutta_4 or split_rotation");
 }
 
-namespace {
-// dq/dt = ½ [0, ω] q (Witkin & Baraff, eq. 4-2), one explicit step, then renormalised.
-void rotate(BodyState& s, const Vec3& omega, double dt) {
+void quaternionStep(Quat& q, const Vec3& omega, double dt) {
   const Quat w(0.0, omega.x(), omega.y(), omega.z());
-  Quat dq = w * s.q;
-  s.q.coeffs() += (0.5 * dt) * dq.coeffs();
-  s.q.normalize();
+  const Quat dq = w * q;
+  q.coeffs() += (0.5 * dt) * dq.coeffs();
+  q.normalize();
 }
+
+namespace {
 /// The time derivative of a body's state (Witkin & Baraff, rigid body dynamics §2), with the
 /// force and torque held constant.
 struct StateRate {
@@ -103,7 +103,7 @@ void integrateBody(RigidBody& body, double dt, const Vec3& gravity, Integrator i
   switch (integrator) {
     case Integrator::ForwardEuler:
       s.x += dt * body.v;
-      rotate(s, body.omega, dt);
+      quaternionStep(s.q, body.omega, dt);
       s.P += dt * force;
       // Gravity pulls at the centre of mass: only an extra torque changes L.
       if (torque) s.L += dt * extra.torque;
@@ -116,9 +116,9 @@ void integrateBody(RigidBody& body, double dt, const Vec3& gravity, Integrator i
       s.x += dt * (body.invMass * s.P);
       if (torque) {
         s.L += dt * extra.torque;
-        rotate(s, body.Iinv * s.L, dt);
+        quaternionStep(s.q, body.Iinv * s.L, dt);
       } else {
-        rotate(s, body.omega, dt);
+        quaternionStep(s.q, body.omega, dt);
       }
       break;
     case Integrator::SplitRotation:

@@ -48,6 +48,11 @@ struct Wrench {
   Vec3 torque = Vec3::Zero();  ///< N m, about the centre of mass
 };
 
+/// One explicit step of dq/dt = ½ [0, ω] q (Witkin and Baraff, "Physically based modeling",
+/// rigid body dynamics, eq. 4-2) over dt (s) with ω (rad/s, world) held, then q renormalised:
+/// the rotation of ForwardEuler, SemiImplicitEuler and of integrateObjectPositions (\alg{A.2}).
+void quaternionStep(Quat& q, const Vec3& omega, double dt);
+
 /// Turns a movable body by one step of dt (s) with its angular momentum L held, as
 /// Integrator::SplitRotation does (the file's splitting), and updates everything derived.
 void splitRotation(RigidBody& body, double dt);
