@@ -1,9 +1,7 @@
 /// \file
-/// The step's candidate pairs of the once-per-step gathering (contact_gathering.hpp): every
-/// body's bounds stretched along its way in a pass, one sweep over them per step, the bodies
-/// that outgrow their bounds in a pass tested again, and the pairs FIXCONTACTCONSTRAINTS
-/// (\alg{A.2 L5}) takes from the sweep. Only speed depends on the constants here: every pair a
-/// pass looks at still passes the broad phase's own test at that pass' poses.
+/// The step's candidate pairs of the once-per-step gathering.
+#include "boxsim/impulse_damped/step_candidates.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -12,29 +10,29 @@
 #include <vector>
 
 #include "boxsim/collision/broad_phase.hpp"
-#include "boxsim/impulse_damped/contact_gathering.hpp"
+#include "boxsim/collision/obb.hpp"
 
 namespace boxsim {
 
 namespace {
-/// A body's bounds in the step's sweep are stretched this many times its displacement in a
-/// pass along that displacement, so its velocity may grow this much along its way under the
-/// impulses of the step before its pairs are looked for again.
-constexpr double kGuardFactor = 1.5;
-/// ... and grown on every side by this fraction of that displacement (and kGuardFactor times
+/// A body's swept bounds are stretched this many times its displacement in a pass along that
+/// displacement, so its velocity may grow this much along its way under the impulses of the
+/// step before its pairs are looked for again.
+constexpr double kSweptStretch = 1.5;
+/// ... and grown on every side by this fraction of that displacement (and kSweptStretch times
 /// what its spin can move a corner), for a velocity that turns.
-/// Only speed depends on the two: a smaller guard gives fewer candidates and a cheaper sweep,
-/// and more bodies that outgrow it and are tested again. On the clump of Fig. 6.7 (1000 cubes,
-/// callgrind) 1.5 and 0.5 took 6 % fewer instructions than 2 and 1, and fewer than 1.5 and 0.25
-/// or 1.25 and 0.25.
-constexpr double kGuardSideways = 0.5;
+/// Only speed depends on the two: smaller swept bounds give fewer candidates and a cheaper
+/// sweep, and more bodies that outgrow them and are tested again. On the clump of Fig. 6.7
+/// (1000 cubes, callgrind) 1.5 and 0.5 took 6 % fewer instructions than 2 and 1, and fewer than
+/// 1.5 and 0.25 or 1.25 and 0.25.
+constexpr double kSweptSideways = 0.5;
 /// Relative slack for rounding (obbBounds at two poses round differently, by a few ulp of the
 /// coordinates), times the size of the coordinates plus one metre.
-constexpr double kGuardRoundingSlack = 1e-9;
+constexpr double kBoundsRoundingSlack = 1e-9;
 
-/// Up to this many bodies outgrowing their bounds in a pass are each tested against the bodies
-/// of their slab of the sorted bounds (indexGuards); more, and the whole sweep is redone, with
-/// every body's stretch (kGuardFactor) doubled for the rest of the step: a step whose impulses
+/// Up to this many bodies outgrowing their swept bounds in a pass are each tested against the
+/// bodies of their slab of the sorted bounds (indexSweptBounds); more, and the whole sweep is
+/// redone, with every body's stretch doubled for the rest of the step: a step whose impulses
 /// turned that many bodies will turn them again in its later passes. On the 10 000-cube clump
 /// 128, 1024 and no limit ran within 6 % of each other.
 constexpr std::size_t kMaxDirectlyGrown = 128;
@@ -44,150 +42,160 @@ constexpr std::size_t kMaxDirectlyGrown = 128;
 /// its bounds in most steps, sorting every time took 2.6 % of the step.
 constexpr std::size_t kMinIndexedGrown = 16;
 /// An immovable body whose swept bounds are wider along x than this many times the widest
-/// movable body's is not sorted into the index of growCandidates but tested directly, as the
-/// sweep tests a ground (sweep_and_prune.cpp): it would reach into every slab.
+/// movable body's is not sorted into the index but tested directly, as the sweep tests a
+/// ground (sweep_and_prune.cpp): it would reach into every slab.
 constexpr double kIndexWidthRatio = 4.0;
 }  // namespace
 
-double ContactGathering::roundingSlack(const RigidBody& body, double halfDiagonal) {
-  return kGuardRoundingSlack * (1.0 + body.s.x.cwiseAbs().maxCoeff() + halfDiagonal);
+double boundsRoundingSlack(const RigidBody& body, double halfDiagonal) {
+  return kBoundsRoundingSlack * (1.0 + body.s.x.cwiseAbs().maxCoeff() + halfDiagonal);
 }
 
-void ContactGathering::setGuard(const World& world, int i, const Vec3& gravityStep, double dt) {
+void StepCandidates::setSweptBounds(const World& world, const StepBodies& bodies, int i,
+                                    const Vec3& gravityStep, double dt, StampCounter& stamps) {
   const RigidBody& body = world.bodies[i];
   const Obb box = Obb::of(body);
-  guardStamp_[i] = ++stampCounter_;
-  obbBounds(box, 0.0, guardLo_[i], guardHi_[i]);
+  sweptStamp_[i] = stamps.next();
+  obbBounds(box, 0.0, sweptLo_[i], sweptHi_[i]);
   if (body.immovable) return;
-  const double factor = kGuardFactor * guardScale_;
+  const double factor = kSweptStretch * stretch_;
   const Vec3 shift = (factor * dt) * (body.v + gravityStep);
-  const double spin = factor * dt * body.omega.norm() * halfDiagonal_[i];
-  const double sideways = kGuardSideways * shift.norm() / factor + spin;
-  guardLo_[i] = guardLo_[i].cwiseMin(guardLo_[i] + shift) - Vec3::Constant(sideways);
-  guardHi_[i] = guardHi_[i].cwiseMax(guardHi_[i] + shift) + Vec3::Constant(sideways);
+  const double spin = factor * dt * body.omega.norm() * bodies.halfDiagonal[i];
+  const double sideways = kSweptSideways * shift.norm() / factor + spin;
+  sweptLo_[i] = sweptLo_[i].cwiseMin(sweptLo_[i] + shift) - Vec3::Constant(sideways);
+  sweptHi_[i] = sweptHi_[i].cwiseMax(sweptHi_[i] + shift) + Vec3::Constant(sideways);
   // The slow pairs come from these bounds too: they must hold the slow widening's, bit for bit.
   Vec3 slowLo, slowHi;
-  obbBounds(box, params_.slowWidening * body.halfExtents.minCoeff(), slowLo, slowHi);
-  guardLo_[i] = guardLo_[i].cwiseMin(slowLo);
-  guardHi_[i] = guardHi_[i].cwiseMax(slowHi);
+  obbBounds(box, slowWidening_ * body.halfExtents.minCoeff(), slowLo, slowHi);
+  sweptLo_[i] = sweptLo_[i].cwiseMin(slowLo);
+  sweptHi_[i] = sweptHi_[i].cwiseMax(slowHi);
 }
 
-bool ContactGathering::withinGuard(const RigidBody& body, int i, const Vec3& displacement,
-                                   double turn) const {
+bool StepCandidates::withinSweptBounds(const RigidBody& body, int i, const StepBodies& bodies,
+                                       const Vec3& displacement, double turn) const {
   // At the predicted pose the bounds are the current ones moved by the displacement and, as a
   // corner moves at most |ω| Δt ρ when the body turns, grown by at most that, up to rounding.
-  const double slack = turn + roundingSlack(body, halfDiagonal_[i]);
+  const double slack = turn + boundsRoundingSlack(body, bodies.halfDiagonal[i]);
   for (int k = 0; k < 3; ++k)
-    if (!(lo_[i][k] + displacement[k] - slack >= guardLo_[i][k] &&
-          hi_[i][k] + displacement[k] + slack <= guardHi_[i][k]))
+    if (!(bodies.lo[i][k] + displacement[k] - slack >= sweptLo_[i][k] &&
+          bodies.hi[i][k] + displacement[k] + slack <= sweptHi_[i][k]))
       return false;
   return true;
 }
 
-void ContactGathering::sweepCandidates(const World& world, const Vec3& gravityStep, double dt) {
+void StepCandidates::start(const World& world, const StepBodies& bodies,
+                           const std::vector<PairReach>& cached, const Vec3& gravityStep,
+                           double dt, double sweepMargin, StampCounter& stamps) {
+  sweepMargin_ = sweepMargin;
+  stretch_ = 1.0;
+  sweep(world, bodies, cached, gravityStep, dt, stamps);
+}
+
+void StepCandidates::sweep(const World& world, const StepBodies& bodies,
+                           const std::vector<PairReach>& cached, const Vec3& gravityStep,
+                           double dt, StampCounter& stamps) {
   const std::size_t n = world.bodies.size();
-  guardLo_.resize(n);
-  guardHi_.resize(n);
-  guardStamp_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) setGuard(world, static_cast<int>(i), gravityStep, dt);
+  sweptLo_.resize(n);
+  sweptHi_.resize(n);
+  sweptStamp_.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    setSweptBounds(world, bodies, static_cast<int>(i), gravityStep, dt, stamps);
   ++sweeps_;
   candidates_.clear();
   hasCandidate_.assign(n, 0);
   grownKeys_.clear();
-  // Sorted again when first needed (growCandidates), from these bounds.
-  guardIndex_.valid = false;
-  guardIndex_.regrown.clear();
-  sweptKeys_ = candidatePairs(world, guardLo_, guardHi_, sweepMargin_);
+  // Sorted again when first needed (grow), from these bounds.
+  index_.valid = false;
+  index_.regrown.clear();
+  sweptKeys_ = candidatePairs(world, sweptLo_, sweptHi_, sweepMargin_);
   // The cached pairs among them (both lists in increasing (a, b) order): a sweep within the
   // step keeps the cache, which still names its pairs.
-  std::size_t cached = 0;
-  const auto keyOf = [&](std::size_t k) {
-    return std::pair<int, int>(pairReach_[k].a, pairReach_[k].b);
-  };
+  std::size_t k = 0;
+  const auto keyOf = [&](std::size_t c) { return std::pair<int, int>(cached[c].a, cached[c].b); };
   for (const auto& [i, j] : sweptKeys_) {
     candidates_.push_back(Candidate{i, j, SeparatingAxisResult{}, false});
     hasCandidate_[i] = hasCandidate_[j] = 1;
-    for (; cached < pairReach_.size() && keyOf(cached) < std::pair<int, int>(i, j); ++cached) {
+    for (; k < cached.size() && keyOf(k) < std::pair<int, int>(i, j); ++k) {
     }
-    if (cached < pairReach_.size() && keyOf(cached) == std::pair<int, int>(i, j))
-      candidates_.back().cached = static_cast<int>(cached);
+    if (k < cached.size() && keyOf(k) == std::pair<int, int>(i, j))
+      candidates_.back().cached = static_cast<int>(k);
   }
 }
 
-void ContactGathering::indexGuards(const World& world) {
+void StepCandidates::indexSweptBounds(const World& world, const StampCounter& stamps) {
   const std::size_t n = world.bodies.size();
   // As the sweep does (sweep_and_prune.cpp): a ground or a wall, much wider than every movable
   // body, would make every slab reach it; it is tested directly, as are bounds that cannot be
   // sorted (a state gone to NaN).
   double widest = 0.0;
   for (std::size_t i = 0; i < n; ++i)
-    if (!world.bodies[i].immovable && std::isfinite(guardHi_[i].x() - guardLo_[i].x()))
-      widest = std::max(widest, guardHi_[i].x() - guardLo_[i].x());
-  guardIndex_.order.clear();
-  guardIndex_.direct.clear();
+    if (!world.bodies[i].immovable && std::isfinite(sweptHi_[i].x() - sweptLo_[i].x()))
+      widest = std::max(widest, sweptHi_[i].x() - sweptLo_[i].x());
+  index_.order.clear();
+  index_.direct.clear();
   for (std::size_t i = 0; i < n; ++i) {
-    const double width = guardHi_[i].x() - guardLo_[i].x();
+    const double width = sweptHi_[i].x() - sweptLo_[i].x();
     const bool wide = world.bodies[i].immovable && !(width <= kIndexWidthRatio * widest);
-    if (wide || !guardLo_[i].allFinite() || !guardHi_[i].allFinite())
-      guardIndex_.direct.push_back(static_cast<int>(i));
+    if (wide || !sweptLo_[i].allFinite() || !sweptHi_[i].allFinite())
+      index_.direct.push_back(static_cast<int>(i));
     else
-      guardIndex_.order.push_back(static_cast<int>(i));
+      index_.order.push_back(static_cast<int>(i));
   }
-  std::sort(guardIndex_.order.begin(), guardIndex_.order.end(), [&](int i, int j) {
-    return guardLo_[i].x() < guardLo_[j].x() || (guardLo_[i].x() == guardLo_[j].x() && i < j);
+  std::sort(index_.order.begin(), index_.order.end(), [&](int i, int j) {
+    return sweptLo_[i].x() < sweptLo_[j].x() || (sweptLo_[i].x() == sweptLo_[j].x() && i < j);
   });
-  const std::size_t m = guardIndex_.order.size();
-  guardIndex_.lo.resize(m);
-  guardIndex_.maxHi.resize(m);
+  const std::size_t m = index_.order.size();
+  index_.lo.resize(m);
+  index_.maxHi.resize(m);
   double maxHi = -std::numeric_limits<double>::infinity();
   for (std::size_t p = 0; p < m; ++p) {
-    const int i = guardIndex_.order[p];
-    guardIndex_.lo[p] = guardLo_[i].x();
-    maxHi = std::max(maxHi, guardHi_[i].x());
-    guardIndex_.maxHi[p] = maxHi;
+    const int i = index_.order[p];
+    index_.lo[p] = sweptLo_[i].x();
+    maxHi = std::max(maxHi, sweptHi_[i].x());
+    index_.maxHi[p] = maxHi;
   }
-  guardIndex_.stamp = stampCounter_;
-  guardIndex_.valid = true;
+  index_.stamp = stamps.last;
+  index_.valid = true;
   // Every body's bounds as they are now are in the sort.
-  guardIndex_.regrown.clear();
+  index_.regrown.clear();
 }
 
 template <class Visit>
-void ContactGathering::forGuardsNear(const Vec3& lo, const Vec3& hi, double margin,
-                                     const Visit& visit) const {
-  const GuardIndex& index = guardIndex_;
-  for (int j : index.direct) visit(j);
-  // The bodies whose guard changed since the index was sorted stand where they are no more.
-  for (int j : index.regrown) visit(j);
+void StepCandidates::forSweptBoundsNear(const Vec3& lo, const Vec3& hi, double margin,
+                                        const Visit& visit) const {
+  for (int j : index_.direct) visit(j);
+  // The bodies whose bounds changed since the index was sorted stand where they are no more.
+  for (int j : index_.regrown) visit(j);
   // boundsWithin along x, with A the query and B body j: lo_j - hi <= margin and
   // lo - hi_j <= margin. The first fails for every body from the first that fails it on, the
   // order being by lo_j; the second for every body up to the last whose running largest hi_j
   // fails it. Both bounds are the test's own subtractions, so they skip no body it would pass.
-  const auto first = std::partition_point(index.maxHi.begin(), index.maxHi.end(),
+  const auto first = std::partition_point(index_.maxHi.begin(), index_.maxHi.end(),
                                           [&](double maxHi) { return lo.x() - maxHi > margin; });
-  for (std::size_t p = static_cast<std::size_t>(first - index.maxHi.begin());
-       p < index.lo.size() && index.lo[p] - hi.x() <= margin; ++p) {
-    const int j = index.order[p];
-    if (guardStamp_[j] <= index.stamp) visit(j);
+  for (std::size_t p = static_cast<std::size_t>(first - index_.maxHi.begin());
+       p < index_.lo.size() && index_.lo[p] - hi.x() <= margin; ++p) {
+    const int j = index_.order[p];
+    if (sweptStamp_[j] <= index_.stamp) visit(j);
   }
 }
 
-void ContactGathering::growCandidates(const World& world, const Vec3& gravityStep, double dt,
-                                      const std::vector<int>& outgrown) {
+void StepCandidates::grow(const World& world, const StepBodies& bodies,
+                          const std::vector<PairReach>& cached, const Vec3& gravityStep,
+                          double dt, const std::vector<int>& outgrown, StampCounter& stamps) {
   // Many at once (a clump's first impact): one sweep is cheaper than testing each apart.
   if (outgrown.size() > kMaxDirectlyGrown) {
-    guardScale_ *= 2.0;
-    sweepCandidates(world, gravityStep, dt);
+    stretch_ *= 2.0;
+    sweep(world, bodies, cached, gravityStep, dt, stamps);
     return;
   }
-  const bool indexed = guardIndex_.valid || outgrown.size() >= kMinIndexedGrown;
-  if (indexed && !guardIndex_.valid) indexGuards(world);
+  const bool indexed = index_.valid || outgrown.size() >= kMinIndexedGrown;
+  if (indexed && !index_.valid) indexSweptBounds(world, stamps);
   std::vector<char>& isOutgrown = isOutgrown_;
   isOutgrown.assign(world.bodies.size(), 0);
   for (int i : outgrown) {
     // Listed once: a body whose bounds were set since the sort is listed already.
-    if (indexed && guardStamp_[i] <= guardIndex_.stamp) guardIndex_.regrown.push_back(i);
-    setGuard(world, i, gravityStep, dt);
+    if (indexed && sweptStamp_[i] <= index_.stamp) index_.regrown.push_back(i);
+    setSweptBounds(world, bodies, i, gravityStep, dt, stamps);
     isOutgrown[i] = 1;
   }
   // Each outgrown body against the bodies near it (from the index, or all of them), by the
@@ -196,7 +204,7 @@ void ContactGathering::growCandidates(const World& world, const Vec3& gravitySte
   const auto test = [&](int i, int j) {
     if (j == i || (isOutgrown[j] && j < i)) return;
     if (world.bodies[i].immovable && world.bodies[j].immovable) return;
-    if (boundsWithin(guardLo_[i], guardHi_[i], guardLo_[j], guardHi_[j], sweepMargin_)) {
+    if (boundsWithin(sweptLo_[i], sweptHi_[i], sweptLo_[j], sweptHi_[j], sweepMargin_)) {
       found.emplace_back(std::min(i, j), std::max(i, j));
       hasCandidate_[i] = hasCandidate_[j] = 1;
     }
@@ -204,7 +212,7 @@ void ContactGathering::growCandidates(const World& world, const Vec3& gravitySte
   const int n = static_cast<int>(world.bodies.size());
   for (int i : outgrown) {
     if (indexed)
-      forGuardsNear(guardLo_[i], guardHi_[i], sweepMargin_, [&](int j) { test(i, j); });
+      forSweptBoundsNear(sweptLo_[i], sweptHi_[i], sweepMargin_, [&](int j) { test(i, j); });
     else
       for (int j = 0; j < n; ++j) test(i, j);
   }
@@ -227,22 +235,20 @@ void ContactGathering::growCandidates(const World& world, const Vec3& gravitySte
   std::inplace_merge(grownKeys_.begin(), grownKeys_.begin() + grown, grownKeys_.end());
 }
 
-bool ContactGathering::stepPairs(const World& world, double margin,
-                                 std::vector<std::pair<int, int>>& pairs) const {
-  if (params_.gathering != ContactGatheringMode::OncePerStep || !cacheCovers(world) ||
-      !(margin <= sweepMargin_) || guardLo_.size() != world.bodies.size())
-    return false;
+bool StepCandidates::pairsAt(const World& world, double margin,
+                             std::vector<std::pair<int, int>>& pairs) const {
+  if (!(margin <= sweepMargin_) || sweptLo_.size() != world.bodies.size()) return false;
   const std::size_t n = world.bodies.size();
   std::vector<Vec3> lo(n), hi(n);
   std::vector<char> outside(n, 0);
   std::vector<int> outsiders;
   for (std::size_t i = 0; i < n; ++i) {
     obbBounds(Obb::of(world.bodies[i]), 0.0, lo[i], hi[i]);
-    // Inside, bound for bound: then guardLo_[b] - guardHi_[a] <= lo[b] - hi[a] in floating
+    // Inside, bound for bound: then sweptLo_[b] - sweptHi_[a] <= lo[b] - hi[a] in floating
     // point too (subtraction rounds monotonically), so a pair within the margin here was
     // within the sweep's margin there, and is a candidate. NaN bounds count as outside.
-    if (!((lo[i].array() >= guardLo_[i].array()).all() &&
-          (hi[i].array() <= guardHi_[i].array()).all())) {
+    if (!((lo[i].array() >= sweptLo_[i].array()).all() &&
+          (hi[i].array() <= sweptHi_[i].array()).all())) {
       outside[i] = 1;
       outsiders.push_back(static_cast<int>(i));
     }

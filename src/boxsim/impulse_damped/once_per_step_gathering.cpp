@@ -1,0 +1,324 @@
+/// \file
+/// The once-per-step gathering: gatherCollisions of Alg. A.2 found mostly once per step.
+#include "boxsim/impulse_damped/once_per_step_gathering.hpp"
+
+#include <algorithm>
+#include <cstddef>
+#include <utility>
+
+#include "boxsim/collision/broad_phase.hpp"
+#include "boxsim/collision/contact_manifold.hpp"
+
+namespace boxsim {
+
+OncePerStepGathering::OncePerStepGathering(const ImpulseParams& params)
+    : params_(params), candidates_(params.slowWidening), slowPairs_(params.pairReach) {}
+
+bool OncePerStepGathering::cacheCovers(const World& world, double margin) const {
+  return margin == cacheMargin_ && cached_ && bodies_.sameMobility(world);
+}
+
+void OncePerStepGathering::beginStep(const World& world, const Vec3& gravityStep, double dt,
+                                     double margin, ContactNormalTracker& normals) {
+  if (!cacheCovers(world, margin)) buildCache(world, gravityStep, dt, margin, normals);
+}
+
+void OncePerStepGathering::buildCache(const World& world, const Vec3& gravityStep, double dt,
+                                      double margin, ContactNormalTracker& normals) {
+  bodies_.build(world, gravityStep, dt, params_.exactReach);
+  slowPairs_.clear();
+  // Wider than the passes need: their own test (boundsWithin with `margin`) picks from the
+  // candidates, so a wider sweep finds the same contacts, and it makes the candidates hold the
+  // pairs FIXCONTACTCONSTRAINTS looks at after the passes (stepPairs), whose margin
+  // (restingContactMargin) is wider by g Δt².
+  candidates_.start(world, bodies_, slowPairs_.reaches(), gravityStep, dt,
+                    margin + world.gravity.norm() * dt * dt, stamps_);
+  // One narrow phase at the current poses for the slow pairs, each body widened by more than a
+  // slow body can move (slowWidening >= exactReach): the pairs the broad phase gives with
+  // margin and widening, picked from the candidates (whose growth is at least the widening) by
+  // the sweep's own test.
+  for (StepCandidates::Candidate& candidate : candidates_.candidates())
+    candidate.cached = slowPairs_.add(world, bodies_, candidate.a, candidate.b, margin,
+                                      params_.slowWidening, normals);
+  ++narrowPhases_;
+  // Every predicted pose and every candidate's answer is from before this build.
+  buildStamp_ = stamps_.next();
+  poses_.resize(world.bodies.size());
+  manifolds_.clear();
+  cacheMargin_ = margin;
+  cached_ = true;
+}
+
+void OncePerStepGathering::gather(World& world, const Vec3& gravityStep, double dt, double margin,
+                                  ContactNormalTracker& normals,
+                                  std::vector<ImpulseContact>& contacts) {
+  // DEVIATION(RESOLVECOLLISIONS L2-L3, RESOLVECONTACTS L2-L3): the prediction of the file comment.
+  if (!cacheCovers(world, margin)) buildCache(world, gravityStep, dt, margin, normals);
+  // The predicted poses kept are for one g Δt and Δt (a shock propagation pass, say, predicts
+  // with another): for others they, and the answers found with them, are forgotten.
+  if (!sameBits(gravityStep, predictedGravity_) || !sameBits(dt, predictedDt_)) {
+    predictedGravity_ = gravityStep;
+    predictedDt_ = dt;
+    buildStamp_ = stamps_.next();
+  }
+  sortBodies(world, gravityStep, dt);
+  gatherFastPairs(world, gravityStep, dt, margin, normals);
+  putBackAll(world);
+  mergeSlowPairs(world, gravityStep, dt, margin, normals, contacts);
+}
+
+void OncePerStepGathering::classify(const World& world, std::size_t i, const Vec3& gravityStep,
+                                    double dt) {
+  const RigidBody& body = world.bodies[i];
+  // Reach and the swept-bounds test depend on v and ω alone (and on the swept bounds): with
+  // both bitwise as in the last pass they are what they were then.
+  PassMotion& motion = motion_[i];
+  if (!(motion.stamp > buildStamp_ && sameBits(motion.v, body.v) &&
+        sameBits(motion.omega, body.omega))) {
+    motion.v = body.v;
+    motion.omega = body.omega;
+    motion.turn = dt * body.omega.norm() * bodies_.halfDiagonal[i];
+    motion.reach = passReach(body.v, body.omega, gravityStep, dt, bodies_.halfDiagonal[i]);
+    motion.sweptStamp = 0;
+    motion.stamp = stamps_.next();
+  }
+  passReach_[i] = motion.reach;
+  if (!bodies_.fast[i] && motion.reach <= bodies_.slowReach[i]) return;
+  fastThisPass_.push_back(static_cast<int>(i));
+  const int index = static_cast<int>(i);
+  if (motion.sweptStamp != candidates_.sweptStamp(index)) {
+    const Vec3 u = body.v + gravityStep;
+    motion.withinSwept =
+        candidates_.withinSweptBounds(body, index, bodies_, Vec3(dt * u), motion.turn);
+    motion.sweptStamp = candidates_.sweptStamp(index);
+  }
+  if (!motion.withinSwept) outgrown_.push_back(index);
+}
+
+void OncePerStepGathering::sortBodies(const World& world, const Vec3& gravityStep, double dt) {
+  // A body fast when the cache was built stays fast for the step: the cache holds only its
+  // pairs that moved together then, predicted while they still do.
+  const std::size_t n = world.bodies.size();
+  fastThisPass_.clear();
+  outgrown_.clear();
+  passReach_.assign(n, 0.0);
+  motion_.resize(n);
+  // The bodies of settled islands sit this pass out (contact_islands.hpp): they would stand,
+  // move and touch as in the pass that settled them, and change nothing.
+  refreshIslands(world);
+  skip_.resize(n);
+  anySkipped_ = false;
+  for (std::size_t i = 0; i < n; ++i) {
+    skip_[i] = static_cast<char>(islands_.settled(static_cast<int>(i)));
+    anySkipped_ = anySkipped_ || skip_[i];
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    bodies_.setPass(world.bodies[i], static_cast<int>(i), gravityStep, dt);
+    if (!world.bodies[i].immovable && !skip_[i]) classify(world, i, gravityStep, dt);
+  }
+  // The step's candidates hold every pair that can come near while each body moves less than
+  // its swept bounds allow; one that outgrew them needs its pairs found afresh, from the poses
+  // the bodies stand at. A pair found so may join a settled island to an active one, which
+  // takes it up again in this very pass.
+  while (!outgrown_.empty()) {
+    candidates_.grow(world, bodies_, slowPairs_.reaches(), gravityStep, dt, outgrown_, stamps_);
+    outgrown_.clear();
+    if (!anySkipped_) break;
+    refreshIslands(world);
+    anySkipped_ = false;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!skip_[i]) continue;
+      if (islands_.settled(static_cast<int>(i))) {
+        anySkipped_ = true;
+      } else {
+        skip_[i] = 0;
+        classify(world, i, gravityStep, dt);
+      }
+    }
+  }
+  if (anySkipped_)
+    for (std::size_t i = 0; i < n; ++i) skippedBodyPasses_ += skip_[i];
+  islands_.flatten();
+}
+
+void OncePerStepGathering::refreshIslands(const World& world) {
+  const std::size_t n = world.bodies.size();
+  if (islandSweep_ != candidates_.sweeps() || islands_.size() != n) {
+    // A new sweep: the islands of its pairs and of the cached ones, every island active.
+    std::vector<char> movable(n);
+    for (std::size_t i = 0; i < n; ++i) movable[i] = static_cast<char>(!world.bodies[i].immovable);
+    islands_.reset(movable);
+    for (const PairReach& pair : slowPairs_.reaches()) islands_.join(pair.a, pair.b);
+    joinedCandidates_ = 0;
+    islandSweep_ = candidates_.sweeps();
+  }
+  const std::vector<StepCandidates::Candidate>& candidates = candidates_.candidates();
+  for (; joinedCandidates_ < candidates.size(); ++joinedCandidates_)
+    islands_.join(candidates[joinedCandidates_].a, candidates[joinedCandidates_].b);
+}
+
+void OncePerStepGathering::gatherFastPairs(World& world, const Vec3& gravityStep, double dt,
+                                           double margin, ContactNormalTracker& normals) {
+  // RESOLVECOLLISIONS L2, RESOLVECONTACTS L2: the fast bodies only go to their predicted poses,
+  // as written.
+  poses_.startPass(world.bodies.size());
+  bool anyFast = false;
+  for (int i : fastThisPass_) {
+    RigidBody& body = world.bodies[i];
+    // A fast body with no candidate cannot touch anything in this pass: its predicted pose
+    // would be looked at by no one, so it stays, with the velocities putting it back recomputes.
+    if (!candidates_.hasCandidate(i)) {
+      body.updateVelocities();
+      continue;
+    }
+    // It stands at its predicted pose for the pass; the narrow phase looks at that pose where
+    // it is kept (PassPoses::box), and the body goes there (moveToPredicted) only when one of
+    // its pairs touches: then the normal model and COLLIDE see it there, as written. A body
+    // that touches nothing ends the pass as if it had gone and come back (putBackAll).
+    poses_.standFast(i);
+    anyFast = true;
+    poses_.prepare(body, i, dt, gravityStep, buildStamp_, stamps_);
+  }
+  // RESOLVECOLLISIONS L3, RESOLVECONTACTS L3: the pairs with a fast body, the broad and narrow phase where the bodies now
+  // stand, as written. The broad phase is the broad phases' own test (boundsWithin) on the
+  // candidates, so it keeps the pairs a sweep at these poses would find, in the same (a, b)
+  // order, which is the cache's order too, so the two lists merge into one.
+  fastContacts_.clear();
+  if (anyFast)
+    for (std::size_t k = 0; k < candidates_.candidates().size(); ++k)
+      gatherFastPair(world, k, gravityStep, dt, margin, normals);
+  // The pairs grow() added come after the sweep's: into the (a, b) order.
+  if (candidates_.grown())
+    std::sort(fastContacts_.begin(), fastContacts_.end(),
+              [](const ImpulseContact& x, const ImpulseContact& y) {
+                return std::pair<int, int>(x.a, x.b) < std::pair<int, int>(y.a, y.b);
+              });
+}
+
+void OncePerStepGathering::gatherFastPair(World& world, std::size_t k, const Vec3& gravityStep,
+                                          double dt, double margin,
+                                          ContactNormalTracker& normals) {
+  StepCandidates::Candidate& candidate = candidates_.candidates()[k];
+  const int a = candidate.a, b = candidate.b;
+  if (!poses_.fastAtPredicted(a) && !poses_.fastAtPredicted(b)) return;
+  // Two bodies moving together: predicted with the cached pairs (mergeSlowPairs).
+  if (candidate.cached >= 0 &&
+      slowPairs_.predictedTogether(
+          bodies_, slowPairs_.reaches()[static_cast<std::size_t>(candidate.cached)]))
+    return;
+  // RESOLVECOLLISIONS L2, RESOLVECONTACTS L2: a moved body's slow partner too, as written, so the narrow phase sees both where
+  // the pass predicts them. It moves by at most its reach, so if its bounds stay farther than
+  // that plus the margin from the moved body's, the pair cannot touch in the pass and it need
+  // not move for this pair (its current bounds then fail the test below as its predicted ones
+  // would). It goes back before COLLIDE (putBackAll).
+  if (poses_.fastAtPredicted(a) != poses_.fastAtPredicted(b)) {
+    const int i = poses_.fastAtPredicted(a) ? a : b, j = poses_.fastAtPredicted(a) ? b : a;
+    const RigidBody& body = world.bodies[j];
+    if (!body.immovable && !poses_.partnerAtPredicted(j) &&
+        boundsWithin(poses_.predicted(i).lo, poses_.predicted(i).hi, bodies_.lo[j], bodies_.hi[j],
+                     margin + passReach_[j] + boundsRoundingSlack(body, bodies_.halfDiagonal[j]))) {
+      poses_.standPartner(j);
+      poses_.prepare(body, j, dt, gravityStep, buildStamp_, stamps_);
+    }
+  }
+  // Both bodies where they stood when the pair was last looked at: the broad and narrow phase
+  // would answer as then, so the answer is taken from then (the normal model still sees the
+  // manifold, as it would).
+  const std::uint64_t stampA = poses_.stamp(a, buildStamp_), stampB = poses_.stamp(b, buildStamp_);
+  const auto addContact = [&](ContactManifold m) {
+    poses_.moveToPredicted(world, a);
+    poses_.moveToPredicted(world, b);
+    if (m.count == 0) return;
+    m.a = a;
+    m.b = b;
+    fastContacts_.push_back(normals.contactOf(world, m));
+  };
+  if (candidate.stampA == stampA && candidate.stampB == stampB) {
+    if (candidate.manifold >= 0) addContact(manifolds_[static_cast<std::size_t>(candidate.manifold)]);
+    return;
+  }
+  candidate.stampA = stampA;
+  candidate.stampB = stampB;
+  // Bounds where each body stands in this pass: predicted once it moved, current before.
+  const bool predictedA = poses_.atPredicted(a), predictedB = poses_.atPredicted(b);
+  const Vec3& loA = predictedA ? poses_.predicted(a).lo : bodies_.lo[a];
+  const Vec3& hiA = predictedA ? poses_.predicted(a).hi : bodies_.hi[a];
+  const Vec3& loB = predictedB ? poses_.predicted(b).lo : bodies_.lo[b];
+  const Vec3& hiB = predictedB ? poses_.predicted(b).hi : bodies_.hi[b];
+  ContactManifold m;
+  if (!boundsWithin(loA, hiA, loB, hiB, margin) || !candidateManifold(world, k, margin, m)) {
+    candidate.manifold = -1;
+    return;
+  }
+  if (candidate.manifold < 0) {
+    candidate.manifold = static_cast<int>(manifolds_.size());
+    manifolds_.push_back(m);
+  } else {
+    manifolds_[static_cast<std::size_t>(candidate.manifold)] = m;
+  }
+  addContact(std::move(m));
+}
+
+bool OncePerStepGathering::candidateManifold(const World& world, std::size_t k, double margin,
+                                             ContactManifold& manifold) {
+  StepCandidates::Candidate& candidate = candidates_.candidates()[k];
+  const Obb a = poses_.box(world, candidate.a);
+  const Obb b = poses_.box(world, candidate.b);
+  // Apart last time, and still apart along the same axis: the full test would say so too.
+  ++passNarrowPhases_;
+  if (candidate.apart && separatedBeyond(a, b, candidate.axis, margin)) return false;
+  const SeparatingAxisResult sat = separatingAxisTest(a, b);
+  manifold = buildContactManifold(a, b, sat, margin);
+  candidate.axis = sat;
+  candidate.apart = manifold.count == 0;
+  return manifold.count > 0;
+}
+
+void OncePerStepGathering::putBackAll(World& world) {
+  // DEVIATION(RESOLVECOLLISIONS L6, RESOLVECONTACTS L6): every body goes back before COLLIDE, the fast ones too, with its
+  // velocities recomputed exactly as they were: the slow pairs' prediction and COLLIDE see
+  // every body where it stands, and each fast contact keeps the lever arms it was found with
+  // (contact_gathering.hpp, "Where COLLIDE acts"). A body that never went to its predicted
+  // pose (nothing it touched) only gets the velocities putting it back would recompute.
+  for (int j : poses_.partners()) poses_.putBack(world, j);
+  for (int i : fastThisPass_)
+    if (poses_.fastAtPredicted(i)) poses_.putBack(world, i);
+}
+
+void OncePerStepGathering::mergeSlowPairs(const World& world, const Vec3& gravityStep, double dt,
+                                          double margin, ContactNormalTracker& normals,
+                                          std::vector<ImpulseContact>& contacts) {
+  contacts.clear();
+  std::size_t f = 0;
+  const auto keyOf = [](const ImpulseContact& contact) {
+    return std::pair<int, int>(contact.a, contact.b);
+  };
+  const std::vector<PairReach>& reaches = slowPairs_.reaches();
+  ImpulseContact c;
+  for (std::size_t k = 0; k < reaches.size(); ++k) {
+    const PairReach& reach = reaches[k];
+    const std::pair<int, int> key(reach.a, reach.b);
+    for (; f < fastContacts_.size() && keyOf(fastContacts_[f]) < key; ++f)
+      contacts.push_back(fastContacts_[f]);
+    if (skip_[key.first] || skip_[key.second]) continue;
+    // A body that turned fast in this step: unless the two move together, its pairs are among
+    // the fast ones now.
+    if ((poses_.fastAtPredicted(key.first) || poses_.fastAtPredicted(key.second)) &&
+        !slowPairs_.predictedTogether(bodies_, reach)) {
+      slowPairs_.forgetFace(k);
+      continue;
+    }
+    if (slowPairs_.passContact(world, bodies_, k, gravityStep, dt, margin, normals, c))
+      contacts.push_back(c);
+  }
+  contacts.insert(contacts.end(), fastContacts_.begin() + static_cast<std::ptrdiff_t>(f),
+                  fastContacts_.end());
+}
+
+bool OncePerStepGathering::stepPairs(const World& world, double margin,
+                                     std::vector<std::pair<int, int>>& pairs) const {
+  if (!cached_ || !bodies_.sameMobility(world)) return false;
+  return candidates_.pairsAt(world, margin, pairs);
+}
+
+}  // namespace boxsim

@@ -1,0 +1,159 @@
+/// \file
+/// The slow-pair prediction of the once-per-step gathering.
+#include "boxsim/impulse_damped/slow_pair_cache.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "boxsim/collision/broad_phase.hpp"
+#include "boxsim/collision/contact_manifold.hpp"
+#include "boxsim/collision/obb.hpp"
+
+namespace boxsim {
+
+void SlowPairCache::clear() {
+  pairs_.clear();
+  reaches_.clear();
+  exactManifolds_.clear();
+}
+
+int SlowPairCache::add(const World& world, const StepBodies& bodies, int i, int j, double margin,
+                       double slowWidening, ContactNormalTracker& normals) {
+  // Gathered as written, pass by pass, unless the two move together.
+  const bool together = pairReach_ && bodies.movingTogether(i, j);
+  if ((bodies.fast[i] || bodies.fast[j]) && !together) return -1;
+  const RigidBody& bodyI = world.bodies[i];
+  const RigidBody& bodyJ = world.bodies[j];
+  const double wideningI = bodyI.immovable ? 0.0 : slowWidening * bodyI.halfExtents.minCoeff();
+  const double wideningJ = bodyJ.immovable ? 0.0 : slowWidening * bodyJ.halfExtents.minCoeff();
+  Vec3 loI, hiI, loJ, hiJ;
+  obbBounds(Obb::of(bodyI), wideningI, loI, hiI);
+  obbBounds(Obb::of(bodyJ), wideningJ, loJ, hiJ);
+  if (!boundsWithin(loI, hiI, loJ, hiJ, margin)) return -1;
+  const double pairMargin = margin + wideningI + wideningJ;
+  ContactManifold m = collideBoxes(Obb::of(bodyI), Obb::of(bodyJ), pairMargin);
+  // Closer than the margin along every axis, yet no point: boxes passing corner by corner.
+  // The pair stays, with no points, and gets the exact narrow phase every pass.
+  if (m.depth <= -pairMargin) return -1;
+  // A pair with a fast body is predicted from its points only: with none, it is gathered
+  // as written.
+  if ((bodies.fast[i] || bodies.fast[j]) && m.count == 0) return -1;
+  m.a = i;
+  m.b = j;
+  const Vec3& xa = bodyI.s.x;
+  const Vec3& xb = bodyJ.s.x;
+  // The normal model's choice now; its face is remembered only in the passes the pair touches.
+  CachedPair pair{normals.contactOf(world, m, false), m, {}, 0, false};
+  PairReach reach{i, j, 0};
+  for (int k = 0; k < m.count; ++k) {
+    const ContactPoint& p = m.points[k];
+    const Vec3 ra = p.position - xa, rb = p.position - xb;
+    pair.points[pair.count++] = CachedPoint{p.position, p.depth,       ra,          rb,
+                                            ra.cross(m.normal), rb.cross(m.normal),
+                                            m.normal.dot(ra),   m.normal.dot(rb)};
+    reach.deepest = k == 0 ? p.depth : std::max(reach.deepest, p.depth);
+    reach.leverA = std::max(reach.leverA, ra.norm());
+    reach.leverB = std::max(reach.leverB, rb.norm());
+  }
+  reach.count = pair.count;
+  pairs_.push_back(pair);
+  reaches_.push_back(reach);
+  return static_cast<int>(pairs_.size()) - 1;
+}
+
+bool SlowPairCache::mayTouch(const StepBodies& bodies, const PairReach& reach, double margin) {
+  const double dt = bodies.passDt;
+  // A point's depth changes in the pass by n · (d_a - d_b) (predictedContact), at most
+  // Δt |v'_a - v'_b| + Δt |ω| |r| + Δt² |ω|² |r| for each body; the allowance relative to the
+  // terms, far above their rounding, keeps the answer what the computed depths would give.
+  const double wa = bodies.passSpin[reach.a], wb = bodies.passSpin[reach.b];
+  const double bound = dt * (bodies.passVelocity[reach.a] - bodies.passVelocity[reach.b]).norm() +
+                       dt * (wa * reach.leverA + wb * reach.leverB) +
+                       dt * dt * (wa * wa * reach.leverA + wb * wb * reach.leverB);
+  return reach.deepest + bound + 1e-12 * (std::abs(reach.deepest) + bound) > -margin;
+}
+
+bool SlowPairCache::predictedContact(const World& world, const CachedPair& pair,
+                                     const Vec3& gravityStep, double dt, double margin,
+                                     ImpulseContact& contact) const {
+  const RigidBody& a = world.bodies[pair.contact.a];
+  const RigidBody& b = world.bodies[pair.contact.b];
+  const Vec3 ua = a.immovable ? a.v : Vec3(a.v + gravityStep);
+  const Vec3 ub = b.immovable ? b.v : Vec3(b.v + gravityStep);
+  const Vec3& n = pair.manifold.normal;
+  const double linear = n.dot(ua - ub);
+  // n · (ω × (ω × r)) = (n · ω)(ω · r) - |ω|² (n · r), with n · r cached per point.
+  const double nwa = n.dot(a.omega), nwb = n.dot(b.omega);
+  const double wa2 = a.omega.squaredNorm(), wb2 = b.omega.squaredNorm();
+  Vec3 sum = Vec3::Zero();
+  int kept = 0;
+  std::array<bool, 4> keptPoint{};
+  double deepest = 0.0;
+  for (int i = 0; i < pair.count; ++i) {
+    const CachedPoint& p = pair.points[i];
+    // n · (ω × r) = ω · (r × n).
+    const double turning = a.omega.dot(p.raCrossN) - b.omega.dot(p.rbCrossN);
+    const double centripetal = (nwa * a.omega.dot(p.ra) - wa2 * p.nDotRa) -
+                               (nwb * b.omega.dot(p.rb) - wb2 * p.nDotRb);
+    const double depth = p.depth + dt * (linear + turning) + (0.5 * dt * dt) * centripetal;
+    if (depth <= -margin) continue;
+    keptPoint[i] = true;
+    deepest = kept == 0 ? depth : std::max(deepest, depth);
+    sum += p.position;
+    ++kept;
+  }
+  if (kept == 0) return false;
+  contact = pair.contact;
+  contact.point = sum / static_cast<double>(kept);
+  if (!contact.friction.frictionless()) {
+    // The friction patch is the kept points, about the new centroid, in the order around the
+    // patch that the found contact gave them (a subset of a convex outline stays one).
+    const ContactPatch& found = pair.contact.patch;
+    contact.patch.count = 0;
+    for (int k = 0; k < found.count; ++k) {
+      const int i = found.pointOf[k];
+      if (!keptPoint[i]) continue;
+      contact.patch.offsets[contact.patch.count] = pair.points[i].position - contact.point;
+      contact.patch.pointOf[contact.patch.count++] = i;
+    }
+  }
+  contact.depth = deepest;
+  contact.ra = contact.point - a.s.x;
+  contact.rb = contact.point - b.s.x;
+  return true;
+}
+
+bool SlowPairCache::passContact(const World& world, const StepBodies& bodies, std::size_t k,
+                                const Vec3& gravityStep, double dt, double margin,
+                                ContactNormalTracker& normals, ImpulseContact& contact) {
+  const PairReach& reach = reaches_[k];
+  // Too far apart for any point to come within the margin: no contact, as predictedContact
+  // would find, without reading the points.
+  if (reach.count > 0 && !mayTouch(bodies, reach, margin)) return false;
+  CachedPair& pair = pairs_[k];
+  if (pair.count > 0) {
+    if (!predictedContact(world, pair, gravityStep, dt, margin, contact)) return false;
+    // The bodies have not moved since the cache was built: its manifold names the face, the
+    // same in every pass, so remembering it once is remembering it every pass.
+    if (!pair.remembered) normals.remember(world, pair.manifold);
+    pair.remembered = true;
+    return true;
+  }
+  // No point to predict from: the narrow phase where the two slow bodies stand. Neither body
+  // moved since the first pass that looked: the narrow phase answers as then.
+  if (pair.exact == kExactUnknown) {
+    pair.exact = static_cast<int>(exactManifolds_.size());
+    exactManifolds_.push_back(collideBoxes(Obb::of(world.bodies[reach.a]),
+                                           Obb::of(world.bodies[reach.b]), margin));
+    exactManifolds_.back().a = reach.a;
+    exactManifolds_.back().b = reach.b;
+  }
+  const ContactManifold& m = exactManifolds_[static_cast<std::size_t>(pair.exact)];
+  if (m.count == 0) return false;
+  // Its face is remembered once while it stays slow, as the predicted pairs'.
+  contact = normals.contactOf(world, m, !pair.remembered);
+  pair.remembered = true;
+  return true;
+}
+
+}  // namespace boxsim

@@ -1,0 +1,115 @@
+/// \file
+/// The slow-pair prediction of the once-per-step gathering (once_per_step_gathering.hpp): one
+/// narrow phase per step at the current poses for the pairs of slow bodies (and of bodies
+/// moving together), and in every pass the depth of each cached point at the predicted poses
+/// by a Taylor expansion in the displacement:
+///
+///     depth' = depth + n · (d_a(p) - d_b(p)),
+///     d(p) = Δt (v' + ω × r) + ½ Δt² ω × (ω × r),   r = p - x.
+///
+/// DEVIATION(RESOLVECOLLISIONS L2-L3, RESOLVECONTACTS L2-L3): these bodies are not moved
+/// to their predicted poses; what differs is stated in once_per_step_gathering.hpp.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "boxsim/collision/contact.hpp"
+#include "boxsim/core/world.hpp"
+#include "boxsim/impulse_damped/contact_normal.hpp"
+#include "boxsim/impulse_damped/step_bodies.hpp"
+
+namespace boxsim {
+
+/// What a pass reads of a cached pair before its points, kept apart from them (a cached pair
+/// is about a kilobyte, and most pairs of a pile stop here): its bodies and how near its points
+/// can come.
+struct PairReach {
+  int a, b;              ///< body indices, a < b
+  int count;             ///< its points
+  double deepest = 0.0;  ///< m, the largest depth of its points
+  double leverA = 0.0;   ///< m, the largest |r_a| of its points
+  double leverB = 0.0;   ///< m, the largest |r_b| of its points
+};
+
+/// The cached pairs of a step in increasing (a, b) order and their predicted contacts.
+class SlowPairCache {
+ public:
+  /// `pairReach`: ImpulseParams::pairReach, whether pairs with a fast body that move together
+  /// are cached too.
+  explicit SlowPairCache(bool pairReach = true) : pairReach_(pairReach) {}
+
+  /// Forgets every cached pair.
+  void clear();
+  /// Caches bodies i < j of `world` if they are both slow, or move together
+  /// (StepBodies::movingTogether, with pairReach on), and their narrow phase at the current
+  /// poses, each movable body widened by `slowWidening` times its smallest half extent (more
+  /// than a slow body can move in a pass), finds them closer than `margin` (m) plus both
+  /// widenings; a pair with a fast body needs manifold points besides. Keeps the normal model's
+  /// contact now and the manifold's points. Returns the pair's index in the cache, or -1 when
+  /// it is not cached. Pairs must come in increasing (i, j) order.
+  int add(const World& world, const StepBodies& bodies, int i, int j, double margin,
+          double slowWidening, ContactNormalTracker& normals);
+
+  /// The cached pairs' bodies and reach, in cache order.
+  const std::vector<PairReach>& reaches() const { return reaches_; }
+  /// Whether cached pair `reach` is predicted from the cache in this pass rather than gathered
+  /// as written although it has a fast body: it has points, pairReach is on and its two bodies
+  /// move together (StepBodies::movingTogether).
+  bool predictedTogether(const StepBodies& bodies, const PairReach& reach) const {
+    return reach.count > 0 && pairReach_ && bodies.movingTogether(reach.a, reach.b);
+  }
+  /// Cached pair k's contact in this pass, from its predicted points or, with none to predict
+  /// from, from the narrow phase where its slow bodies stand (the same in every pass of the
+  /// step); false when none is within `margin` (m). Remembers its face in the normal model
+  /// once while the pair stays slow.
+  bool passContact(const World& world, const StepBodies& bodies, std::size_t k,
+                   const Vec3& gravityStep, double dt, double margin,
+                   ContactNormalTracker& normals, ImpulseContact& contact);
+  /// Cached pair k is gathered as written in this pass (one of its bodies turned fast): what
+  /// it remembered of its face comes after anything remembered before.
+  void forgetFace(std::size_t k) { pairs_[k].remembered = false; }
+
+ private:
+  /// One manifold point with the parts of its predicted depth that do not change in a step.
+  struct CachedPoint {
+    Vec3 position;     ///< m, world, at the current pose
+    double depth;      ///< m, along the manifold normal at the current pose
+    Vec3 ra;           ///< p - x_a, m
+    Vec3 rb;           ///< p - x_b, m
+    Vec3 raCrossN;     ///< r_a × n, m
+    Vec3 rbCrossN;     ///< r_b × n, m
+    double nDotRa;     ///< n · r_a, m
+    double nDotRb;     ///< n · r_b, m
+  };
+  /// One cached pair: the contact as COLLIDE will see it and its manifold's points.
+  struct CachedPair {
+    ImpulseContact contact;        ///< bodies and the model's normal
+    /// The manifold at the current pose (its normal, a to b, is the direction the depths are
+    /// measured in; its kind and normal name the face the normal model remembers).
+    ContactManifold manifold;
+    std::array<CachedPoint, 4> points;
+    int count;
+    bool remembered;  ///< its face was handed to the normal model since it last was fast
+    /// A pair with no point to predict from (count 0) gets the narrow phase where its slow
+    /// bodies stand, the same in every pass of the step: its manifold, found in the first pass
+    /// that needs it (index into exactManifolds_), or kExactUnknown.
+    int exact = kExactUnknown;
+  };
+  static constexpr int kExactUnknown = -1;
+
+  /// Whether a point of the cached pair `reach` may come within `margin` (m) in this pass:
+  /// false only when predictedContact would find none.
+  static bool mayTouch(const StepBodies& bodies, const PairReach& reach, double margin);
+  /// The Taylor-predicted contact of a cached pair of slow bodies; false when no point is
+  /// within the margin.
+  bool predictedContact(const World& world, const CachedPair& pair, const Vec3& gravityStep,
+                        double dt, double margin, ImpulseContact& contact) const;
+
+  bool pairReach_;
+  std::vector<CachedPair> pairs_;
+  std::vector<PairReach> reaches_;  ///< per entry of pairs_, in its order
+  std::vector<ContactManifold> exactManifolds_;  ///< the pairs' narrow phases (CachedPair::exact)
+};
+
+}  // namespace boxsim

@@ -1,0 +1,49 @@
+/// \file
+/// The bodies of a step of the once-per-step gathering and their motion in a pass.
+#include "boxsim/impulse_damped/step_bodies.hpp"
+
+#include "boxsim/collision/broad_phase.hpp"
+#include "boxsim/collision/obb.hpp"
+
+namespace boxsim {
+
+void StepBodies::build(const World& world, const Vec3& gravityStep, double dt, double exactReach) {
+  const std::size_t n = world.bodies.size();
+  immovable.assign(n, 0);
+  if (fast.size() != n) fast.assign(n, 0);
+  lo.resize(n);
+  hi.resize(n);
+  halfDiagonal.resize(n);
+  slowReach.resize(n);
+  passVelocity.resize(n);
+  passTurn.resize(n);
+  passSpin.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const RigidBody& body = world.bodies[i];
+    obbBounds(Obb::of(body), 0.0, lo[i], hi[i]);
+    immovable[i] = static_cast<char>(body.immovable);
+    halfDiagonal[i] = body.halfExtents.norm();
+    slowReach[i] = exactReach * body.halfExtents.minCoeff();
+    setPass(body, static_cast<int>(i), gravityStep, dt);
+    if (body.immovable) continue;
+    if (passReach(body.v, body.omega, gravityStep, dt, halfDiagonal[i]) >
+        exactReach * body.halfExtents.minCoeff())
+      fast[i] = 1;
+  }
+}
+
+bool StepBodies::sameMobility(const World& world) const {
+  if (immovable.size() != world.bodies.size()) return false;
+  for (std::size_t i = 0; i < world.bodies.size(); ++i)
+    if (static_cast<char>(world.bodies[i].immovable) != immovable[i]) return false;
+  return true;
+}
+
+void StepBodies::setPass(const RigidBody& body, int i, const Vec3& gravityStep, double dt) {
+  passVelocity[i] = body.immovable ? body.v : Vec3(body.v + gravityStep);
+  passSpin[i] = body.omega.norm();
+  passTurn[i] = dt * passSpin[i] * halfDiagonal[i];
+  passDt = dt;
+}
+
+}  // namespace boxsim

@@ -1,0 +1,64 @@
+/// \file
+/// What the once-per-step gathering (once_per_step_gathering.hpp) keeps of every body for a
+/// step, and how each body moves in the current pass of \alg{RESOLVECOLLISIONS} or
+/// \alg{RESOLVECONTACTS}: its predicted velocity v', how far it reaches, whether it is slow.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include "boxsim/core/world.hpp"
+
+namespace boxsim {
+
+/// Hands out increasing stamps that name a state (a pose, a set of bounds, a build of the
+/// cache) so that equal stamps mean the same state. One counter serves every part of a
+/// gathering, so that stamps of different kinds never coincide.
+struct StampCounter {
+  std::uint64_t last = 0;  ///< the last stamp handed out
+  /// A stamp greater than every one handed out before.
+  std::uint64_t next() { return ++last; }
+};
+
+/// m: how far a body with velocity v (m/s) and spin ω (rad/s) moves in a pass of Δt = dt s,
+/// Δt (|v + g Δt| + |ω| ρ), with g Δt = `gravityStep` (m/s) and ρ its half diagonal (m).
+inline double passReach(const Vec3& v, const Vec3& omega, const Vec3& gravityStep, double dt,
+                        double halfDiagonal) {
+  return dt * ((v + gravityStep).norm() + omega.norm() * halfDiagonal);
+}
+
+/// The bodies as the once-per-step gathering sees them in a step: what was taken when its
+/// cache was built, and each body's motion in the current pass. Indices are body indices.
+struct StepBodies {
+  std::vector<char> immovable;      ///< each body's mobility when the cache was built
+  /// Fast when the cache was built (reach above slowReach), so not cached as a slow body;
+  /// a body once fast stays fast until endStep().
+  std::vector<char> fast;
+  std::vector<double> halfDiagonal;  ///< m, |h|, the ρ of passReach
+  std::vector<double> slowReach;     ///< m, ImpulseParams::exactReach ℓ: the slow bodies' bar
+  std::vector<Vec3> lo, hi;          ///< m, bounds at the current poses (obbBounds, margin 0)
+  std::vector<Vec3> passVelocity;    ///< m/s, v' of this pass: v + g Δt when movable
+  std::vector<double> passTurn;      ///< m, Δt |ω| ρ of this pass
+  std::vector<double> passSpin;      ///< rad/s, |ω| of this pass
+  double passDt = 0.0;               ///< s, the Δt of the pass values
+
+  /// Takes every body as it stands (mobility, bounds, half diagonal, slow bar, pass motion)
+  /// and marks fast each movable body whose passReach exceeds exactReach (units of the
+  /// smallest half extent ℓ).
+  void build(const World& world, const Vec3& gravityStep, double dt, double exactReach);
+  /// Whether the bodies were taken with the mobility each body of `world` has now.
+  bool sameMobility(const World& world) const;
+  /// Records body i's motion in this pass from its velocities (v' = v + g Δt when movable).
+  void setPass(const RigidBody& body, int i, const Vec3& gravityStep, double dt);
+  /// Whether bodies a and b move together in this pass: Δt |v'_a - v'_b| plus both turns
+  /// within the slow bar of the smaller body (ImpulseParams::pairReach).
+  bool movingTogether(int a, int b) const {
+    return passDt * (passVelocity[a] - passVelocity[b]).norm() + passTurn[a] + passTurn[b] <=
+           std::min(slowReach[a], slowReach[b]);
+  }
+  /// The step is over: no body is fast any more.
+  void endStep() { fast.clear(); }
+};
+
+}  // namespace boxsim
