@@ -6,8 +6,10 @@
 # script the target executes at build time. The script
 #   1. lists the inputs that exist now (README.md and the chapter pages are optional, so a
 #      tree without them still builds its documentation),
-#   2. writes the "Thesis cross-references" and "Algorithm cross-references" pages: every
-#      \thesis{...} and \alg{...} citation in the inputs, by section, with the files citing it,
+#   2. writes the "Thesis cross-references" page (every \thesis{...} citation in the inputs,
+#      by section, with the files citing it) and the concordance of the pseudocode
+#      (cmake/BoxsimConcordance.cmake: every line of Appendix A with the code implementing it
+#      and the places citing it, and the check that every line is implemented),
 #   3. writes a Doxyfile that includes the one in the source root and sets the output
 #      directory, the inputs and Graphviz, and runs Doxygen on it.
 # Doing this at build time rather than configure time keeps the pages and the input list in
@@ -16,7 +18,7 @@
 # The citations are collected here rather than by Doxygen's \xrefitem because an \xrefitem is
 # a paragraph of its own: inside a sentence it would cut the sentence in two and carry its
 # end into the cross-reference list. The aliases therefore render inline as a link to these
-# pages.
+# pages: \thesis{...} to the thesis cross-references, \alg{...} to the concordance.
 
 if(NOT CMAKE_SCRIPT_MODE_FILE)
   include_guard(GLOBAL)
@@ -41,27 +43,9 @@ endif()
 
 cmake_minimum_required(VERSION 3.25)
 
-# Sets `out` to the lines of `file`, one list element per line, with the characters that
-# CMake lists treat specially (; [ ] \) replaced by placeholders; see boxsimRestore().
-function(boxsimReadLines file out)
-  file(READ "${file}" content)
-  string(REPLACE "\\" "<bs>" content "${content}")
-  string(REPLACE ";" "<sc>" content "${content}")
-  string(REPLACE "[" "<lb>" content "${content}")
-  string(REPLACE "]" "<rb>" content "${content}")
-  string(REPLACE "\n" ";" content "${content}")
-  set(${out} "${content}" PARENT_SCOPE)
-endfunction()
+include("${CMAKE_CURRENT_LIST_DIR}/BoxsimScanning.cmake")
 
-function(boxsimRestore text out)
-  string(REPLACE "<sc>" ";" text "${text}")
-  string(REPLACE "<lb>" "[" text "${text}")
-  string(REPLACE "<rb>" "]" text "${text}")
-  string(REPLACE "<bs>" "\\" text "${text}")
-  set(${out} "${text}" PARENT_SCOPE)
-endfunction()
-
-# Records every \thesis{...} and \alg{...} of `file` (path relative to the source root) in the
+# Records every \thesis{...} of `file` (path relative to the source root) in the
 # caller's variables: <kind>_labels (the cited sections) and <kind>_<md5 of label>_at (the
 # "file|line" places citing it). Markdown code spans and fenced blocks are skipped: they show
 # the commands rather than use them.
@@ -72,28 +56,17 @@ macro(boxsimScanCitations file)
   foreach(line IN LISTS lines)
     math(EXPR lineNumber "${lineNumber} + 1")
     if("${file}" MATCHES "\\.md$")
-      if(line MATCHES "^[ \t]*(```|~~~)")
-        if(inFence)
-          set(inFence FALSE)
-        else()
-          set(inFence TRUE)
-        endif()
-        continue()
-      endif()
-      if(inFence)
-        continue()
-      endif()
-      string(REGEX REPLACE "`[^`]*`" "" line "${line}")
+      boxsimMarkdownText("${line}" inFence line)
     endif()
     # An escaped backslash (\\thesis) shows the command instead of citing.
     string(REPLACE "<bs><bs>" "<escaped>" line "${line}")
-    if(NOT line MATCHES "<bs>(thesis|alg){")
+    if(NOT line MATCHES "<bs>thesis{")
       continue()
     endif()
-    string(REGEX MATCHALL "<bs>(thesis|alg){[^}]*}" citations "${line}")
+    string(REGEX MATCHALL "<bs>thesis{[^}]*}" citations "${line}")
     foreach(citation IN LISTS citations)
-      string(REGEX REPLACE "^<bs>(thesis|alg){([^}]*)}$" "\\1" kind "${citation}")
-      string(REGEX REPLACE "^<bs>(thesis|alg){([^}]*)}$" "\\2" label "${citation}")
+      set(kind thesis)
+      string(REGEX REPLACE "^<bs>thesis{([^}]*)}$" "\\1" label "${citation}")
       string(STRIP "${label}" label)
       boxsimRestore("${label}" label)
       string(MD5 key "${label}")
@@ -123,22 +96,11 @@ function(boxsimWriteCitationPage kind anchor title what column path)
   string(APPEND page "| ${column} | Cited in |\n|:--|:--|\n")
   foreach(label IN LISTS labels)
     string(MD5 key "${label}")
-    # Group the places by file, keeping the files in scan order and the lines ascending.
-    set(files "")
-    foreach(place IN LISTS ${kind}_${key}_at)
-      string(REGEX REPLACE "\\|[0-9]+$" "" file "${place}")
-      string(REGEX REPLACE "^.*\\|" "" line "${place}")
-      string(MD5 fileKey "${file}")
-      if(NOT DEFINED lines_${fileKey})
-        list(APPEND files "${file}")
-      endif()
-      list(APPEND lines_${fileKey} "${line}")
-    endforeach()
+    # The places by file, the files in scan order and the lines ascending.
+    boxsimPlacesByFile("${${kind}_${key}_at}" files fileLines)
     set(where "")
-    foreach(file IN LISTS files)
-      string(MD5 fileKey "${file}")
-      list(JOIN lines_${fileKey} ", " lineList)
-      unset(lines_${fileKey})
+    foreach(file lines IN ZIP_LISTS files fileLines)
+      string(REPLACE "," ", " lineList "${lines}")
       # Pages and files with a \file comment have a documentation page to link to; other
       # files are only named.
       string(REGEX REPLACE "^src/" "" shown "${file}")
@@ -202,14 +164,13 @@ if(mainPage)
 endif()
 list(SORT scanned)
 set(thesis_labels "")
-set(alg_labels "")
 set(documentedFiles "")
 foreach(file IN LISTS scanned)
   file(READ "${BOXSIM_SOURCE_DIR}/${file}" content)
   if(content MATCHES "(///|//!|/\\*\\*|/\\*!)[ \t]*(\\\\|@)file")
     list(APPEND documentedFiles "${file}")
   endif()
-  if(content MATCHES "\\\\(thesis|alg){")
+  if(content MATCHES "\\\\thesis{")
     boxsimScanCitations("${file}")
   endif()
 endforeach()
@@ -217,9 +178,8 @@ set(pagesDir "${BOXSIM_DOCS_DIR}/pages")
 file(MAKE_DIRECTORY "${pagesDir}")
 boxsimWriteCitationPage(thesis thesis_xrefs "Thesis cross-references" "Egan's thesis" "Thesis"
                         "${pagesDir}/thesis_xrefs.md")
-boxsimWriteCitationPage(alg alg_xrefs "Algorithm cross-references"
-                        "the thesis' pseudocode (appendix A)" "Algorithm"
-                        "${pagesDir}/alg_xrefs.md")
+include("${CMAKE_CURRENT_LIST_DIR}/BoxsimConcordance.cmake")
+concordancePage("${pagesDir}/concordance.md")
 list(APPEND inputs "${pagesDir}")
 
 # 3. The Doxyfile of this build, then Doxygen. A .cpp file without a \file comment is left

@@ -113,7 +113,7 @@ TEST_CASE("Damped integration's own damping holds a frictional box on an incline
           "[friction][impulse_damped]") {
   // §5.2: damping slows and stops slow bodies; with it on (the thesis' damped integration) the
   // Coulomb law is no longer what decides whether a box slides. A frictional body skips the
-  // rates k1-k3, but the small-velocity tests (A.2 L11-L19) halve and zero the few cm/s a step
+  // rates k1-k3, but the small-velocity tests (DAMPENOBJECTS L11-L19) halve and zero the few cm/s a step
   // adds. Measured: μ = 0.5 holds the cube up to about 45° (atan μ = 26.6°); at 35° the same
   // step without damping slides at 1.6 m/s².
   Incline s = incline(35.0, {kMu, kMu});

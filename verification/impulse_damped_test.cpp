@@ -267,7 +267,7 @@ TEST_CASE("The plain impulse step, measured on the tower and the pyramid: the to
 TEST_CASE("Damping colliding bodies too brings the clump of Fig. 6.7 to rest, A.2 as "
           "written does not",
           "[impulse_damped][chatter][clump]") {
-  // Measured, and the reason the switch exists: with damping only in contact (A.2 L2 as the
+  // Measured, and the reason the switch exists: with damping only in contact (DAMPENOBJECTS L2 as the
   // thesis words it) the clump's cubes bounce and slide without end on the frictionless ground.
   double kinetic[2] = {0.0, 0.0};
   for (int on = 0; on < 2; ++on) {
@@ -400,7 +400,7 @@ TEST_CASE("Fig. 6.7 read with the origin on the ground: the clump piles up and s
   CHECK(world.kineticEnergy() < 0.5 * std::pow(9.81 * kDt, 2));
   // "After the objects settle some small chatter is still found" (Fig. 6.7): cubes that keep a
   // small angular momentum, which the contact passes give and DAMPENOBJECTS halves, every step;
-  // the pose snap (A.2 L23-L28) holds them where they are, but they never fall asleep.
+  // the pose snap (DAMPENOBJECTS L23-L28) holds them where they are, but they never fall asleep.
   CHECK(chattering > 0);
 }
 
@@ -443,7 +443,7 @@ TEST_CASE("A glancing collision changes angular momentum in proportion to dt und
   // A.2 collides at the predicted pose and keeps the state at the current one: the impulses
   // ±J act at x_a + r'_a and x_b + r'_b, Δt (v_b - v_a) apart, so each changes the pair's
   // angular momentum by Δt (v_a - v_b) × J, first order in Δt. Damping scales momenta on
-  // purpose (A.2 L1-L21), and the contact fix moves bodies, so damped integration is measured
+  // purpose (DAMPENOBJECTS L1-L21), and the contact fix moves bodies, so damped integration is measured
   // with both off: what is left is A.2's passes, as in the plain step.
   DampedIntegrationParams damped = awake();
   damped.damp = false;
@@ -486,7 +486,7 @@ TEST_CASE("Damped integration with split rotation keeps a free tumbling box's en
           "it gains",
           "[impulse_damped][invariant][split_rotation]") {
   // The box of the core test (0.5 x 0.2 x 0.1 m, ω = (1, 5, 0.1) rad/s) alone in empty space:
-  // no contact, no damping, so the step's last stage, integrateObjectPositions (A.2 L22), is
+  // no contact, no damping, so the step's last stage, integrateObjectPositions (DAMPENOBJECTS L22), is
   // all that turns it. Bounds as in core_test.cpp.
   double worst[2] = {0.0, 0.0};
   for (const Integrator integrator : {Integrator::SemiImplicitEuler, Integrator::SplitRotation}) {

@@ -274,7 +274,7 @@ inline double orientationGainBound(const RigidBody& body, const Vec3& omega, con
 }
 
 /// The largest energy, J, one step of the impulse-based techniques can add to a body of mass m
-/// (kg) through the gravity trick of \alg{A.2 L1-L6} (Guendelman et al. 2003, §7), whatever
+/// (kg) through the gravity trick of \alg{COLLIDE L1-L6} (Guendelman et al. 2003, §7), whatever
 /// its contacts: 3/2 m g² Δt². Contact passes act on u = v + g Δt, the velocity after the
 /// step's gravity, with restitution in [−1, 0], so they never raise Σ ½ m |u|²; collisions act
 /// on v with restitution <= 1 and never raise Σ ½ m |v|². Positions then advance by Δt u. For a
@@ -287,7 +287,7 @@ inline double gravityTrickGainBound(double mass, double g, double dt) {
   return 1.5 * mass * g * g * dt * dt;
 }
 
-/// The largest potential energy, J, FIXCONTACTCONSTRAINTS (\thesis{§4.4}, \alg{A.2 L5}) can add
+/// The largest potential energy, J, FIXCONTACTCONSTRAINTS (\thesis{§4.4}, \alg{DAMPEDINTEGRATION L5}) can add
 /// to a body in one step: it lifts the upper body of an interpenetrating pair, against gravity,
 /// by at most fixLiftLimit (the larger of maxNudges nudges, 0.1 ℓ by default, and the distance
 /// a vertex of the body can have travelled in the step), m g times that. A lift out of a

@@ -585,7 +585,7 @@ TEST_CASE("Out-of-range timewarp parameters are refused", "[timewarp][params]") 
 TEST_CASE("The timewarp rolls back 2 bodies per collision, basic colliding all of them",
           "[timewarp][basic_colliding][counters]") {
   // k pairs far apart, each colliding once in the frame (pairsWorld). The timewarp rewinds
-  // only the two bodies of a collision (Alg. A.1 L10-L17); basic colliding rolls every one of
+  // only the two bodies of a collision (SIMPLESYNCTIMEWARP L10-L17); basic colliding rolls every one of
   // the 2k bodies back at each bisection step and once more to the contact (§2.1).
   for (const int k : {1, 2, 4, 8}) {
     const World start = pairsWorld(100 + k, k, Vec3::Zero(), 1.0);

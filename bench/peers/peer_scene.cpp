@@ -105,11 +105,11 @@ class BoxsimEngine : public PeerEngine {
     if (profile_.steps == 0) return {};
     std::vector<std::pair<std::string, double>> stages = {
         {"contacts at the step's start", profile_.stepContacts},
-        {"collision passes (A.2 L1)", profile_.collisionPasses},
-        {"contact passes (A.2 L2)", profile_.contactPasses},
-        {"gravity and damping (A.2 L3-L4)", profile_.velocitiesAndDamping},
-        {"FIXCONTACTCONSTRAINTS (A.2 L5)", profile_.fixContacts},
-        {"geometric stability (A.2 L6)", profile_.stability},
+        {"collision passes (DAMPEDINTEGRATION L1)", profile_.collisionPasses},
+        {"contact passes (DAMPEDINTEGRATION L2)", profile_.contactPasses},
+        {"gravity and damping (DAMPEDINTEGRATION L3-L4)", profile_.velocitiesAndDamping},
+        {"FIXCONTACTCONSTRAINTS (DAMPEDINTEGRATION L5)", profile_.fixContacts},
+        {"geometric stability (DAMPEDINTEGRATION L6)", profile_.stability},
         {"sleeping (§4.5)", profile_.sleeping}};
     std::stable_sort(stages.begin(), stages.end(),
                      [](const auto& x, const auto& y) { return x.second > y.second; });

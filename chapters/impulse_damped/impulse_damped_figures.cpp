@@ -163,7 +163,7 @@ void figS5_2Chatter(const std::vector<Run>& runs, const std::string& dir) {
 /// Damped integration with one of its techniques off at a time (issue: which of them stops the
 /// chatter), and the plain impulse step beside it: the chatter measures and the mean kinetic
 /// energy over each scene's settled window. The kinetic energy catches what the positions do
-/// not: a body whose momenta never settle while A.2 L23-L28's snap holds its pose.
+/// not: a body whose momenta never settle while DAMPENOBJECTS L23-L28's snap holds its pose.
 void figS5_3Ablation(const std::string& sceneDir, const std::string& dir) {
   struct Variant {
     const char* name;

@@ -148,7 +148,8 @@ OrderRun referenceRun(Recorder& recorder, const std::vector<double>& instants) {
   return run;
 }
 
-/// One frame of Fig. 5.1 under a timewarp variant; FIXINTERPENETRATION (A.1 L22 / L33) off,
+/// One frame of Fig. 5.1 under a timewarp variant; fixInterpenetration (SIMPLESYNCTIMEWARP L22, SAFERSYNCTIMEWARP L33)
+/// off,
 /// so the end state shows what the event order did.
 OrderRun timewarpRun(TimewarpVariant variant) {
   TimewarpParams params;

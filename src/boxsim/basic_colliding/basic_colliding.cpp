@@ -48,7 +48,7 @@ namespace {
 /// points (the manifold centroid, or every manifold point) and normal; restitution not yet set.
 std::vector<PairCollision> collisionsAt(const World& atImpact, double depthTolerance,
                                         bool everyPoint) {
-  // One contact point per colliding pair (A.2 L7 findContactPoint): the centroid of the
+  // One contact point per colliding pair (COLLIDE L7 findContactPoint): the centroid of the
   // pair's contact manifold, so a box landing flat gets a pure linear impulse. Or, for the
   // analytic method, every point of the manifold.
   std::vector<PairCollision> collisions;

@@ -52,7 +52,7 @@ struct PairCollision {
   int a = -1;                    ///< body index
   int b = -1;                    ///< body index
   Vec3 normal = Vec3::UnitY();   ///< unit, from a to b
-  /// m: the manifold centroid (\alg{A.2 L7}), or every manifold point
+  /// m: the manifold centroid (\alg{COLLIDE L7}), or every manifold point
   /// (CollisionLoopHooks::simultaneousImpulses).
   std::vector<Vec3> points;
   /// e of each point, fixed by its approach speed before the first impulse pass.
@@ -72,7 +72,7 @@ struct CollisionLoopHooks {
   /// Intersecting pairs that are no collision (resting contacts held by forces, whose small
   /// overlap the forces mend); empty: every intersecting pair is a collision.
   PairFilter notColliding;
-  /// Empty: one impulse point per colliding pair, the manifold centroid (\alg{A.2 L7}), as the
+  /// Empty: one impulse point per colliding pair, the manifold centroid (\alg{COLLIDE L7}), as the
   /// basic technique does. Set: every manifold point is a collision point (Baraff's point
   /// contacts), so a rocking box whose corner hits while its centroid does not still gets an
   /// impulse, and this applies the impulses of all of a pair's points at once, returning how

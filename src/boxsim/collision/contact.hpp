@@ -53,7 +53,7 @@ struct ContactManifold {
   std::array<ContactPoint, 4> points{};  ///< the first `count` are valid
   int count = 0;                   ///< number of valid points, 0..4
 
-  /// The mean of the contact points, m: the single contact point of a collision (\alg{A.2 L7}).
+  /// The mean of the contact points, m: the single contact point of a collision (\alg{COLLIDE L7}).
   Vec3 centroid() const {
     Vec3 c = Vec3::Zero();
     for (int i = 0; i < count; ++i) c += points[i].position;

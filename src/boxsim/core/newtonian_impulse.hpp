@@ -120,7 +120,7 @@ struct ContactPatch {
 /// N = sum.normal. The change of the sums acts on the bodies (b: +J at x_b + rb and the angular
 /// impulse +A; a the opposite) unless it would raise the pair's kinetic energy, and `sum` is
 /// updated.
-/// DEVIATION(A.2 L7, Guendelman et al. 2003 §7): the thesis acts at one point per collision
+/// DEVIATION(COLLIDE L7, Guendelman et al. 2003 §7): the thesis acts at one point per collision
 /// and is frictionless; Guendelman et al. apply a coupled sticking-or-sliding impulse at each
 /// point. At one point a friction impulse at the centre of a box's base has a moment no single
 /// normal impulse balances (a cube on a 20° incline with μ = 0.5 rocked and crept at 44 mm/s),

@@ -28,7 +28,7 @@ struct StepStats {
   long bodyIntegrations = 0;
   /// Single-body roll-backs: a body's state reset to an earlier one to be integrated again.
   long bodyRollbacks = 0;
-  /// Collision and contact passes run (impulse-based techniques, \alg{A.2} L1-L2).
+  /// Collision and contact passes run (impulse-based techniques, \alg{DAMPEDINTEGRATION L1-L2}).
   int passes = 0;
 
   /// Accumulates the counts of another step; `contacts` and `sleeping` take the later value.

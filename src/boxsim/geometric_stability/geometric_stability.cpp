@@ -1,5 +1,5 @@
 /// \file
-/// SETGEOMETRICALLYSTABLE (\alg{A.2 L1-L20}, \thesis{§5.4}), step by step.
+/// \alg{SETGEOMETRICALLYSTABLE} (\thesis{§5.4}), step by step.
 ///
 /// The thesis sweeps the contact points from the lowest up, so that the body under a contact
 /// has its final verdict before the body over it is judged. The two main things the pseudocode
@@ -53,7 +53,8 @@ BottomFace bottomFaceOf(const RigidBody& body, const GeometricStabilityParams& p
   return face;
 }
 
-/// A direction along ±y within the tolerance (the "equivalent" of A.2 L13 and L19).
+/// A direction along ±y within the tolerance (the "equivalent" of SETGEOMETRICALLYSTABLE L13 and
+/// L19).
 bool alongY(const Vec3& n, const GeometricStabilityParams& params) {
   return 1.0 - std::abs(n.y()) <= params.normalTolerance;
 }
@@ -69,9 +70,9 @@ struct VerticalContact {
   Vec2 xz = Vec2::Zero();  ///< the point projected to the xz plane, m
 };
 
-/// A.2 L6: the points of the vertical contacts, lowest first; equal heights in order of the
-/// bottom body, the top body, then the input order, so the order is a function of the input
-/// alone. The verdict does not depend on that tie order (see the sweep).
+/// SETGEOMETRICALLYSTABLE L6: the points of the vertical contacts, lowest first; equal heights in
+/// order of the bottom body, the top body, then the input order, so the order is a function of the
+/// input alone. The verdict does not depend on that tie order (see the sweep).
 std::vector<VerticalContact> sortContactPointsAscending(
     const std::vector<ContactManifold>& contacts, const GeometricStabilityParams& params) {
   std::vector<VerticalContact> sorted;
@@ -138,7 +139,8 @@ bool hullCoversFace(const std::vector<Vec2>& support, const BottomFace& face) {
 
 /// What the sweep knows of one body besides its flag.
 struct BodyMarks {
-  std::array<bool, 4> corners{};  ///< A.2 L15: bottom-face corners marked so far
+  /// Bottom-face corners marked so far (SETGEOMETRICALLYSTABLE L15).
+  std::array<bool, 4> corners{};
   std::vector<Vec2> support;      ///< footnote rule: xz points of contacts with stable bodies
   bool ruledOut = false;          ///< some contact disqualified it for good
 };
@@ -167,7 +169,8 @@ std::vector<char> setGeometricallyStable(const World& world,
   checkInput(world, contacts, params);
   const int n = static_cast<int>(world.bodies.size());
 
-  // A.2 L1-L5: bodies of infinite mass are stable, every other body starts out unstable.
+  // SETGEOMETRICALLYSTABLE L1-L5: bodies of infinite mass are stable, every other body starts out
+  // unstable.
   std::vector<char> stable(n, 0);
   for (int i = 0; i < n; ++i) stable[i] = world.bodies[i].immovable ? 1 : 0;
 
@@ -175,60 +178,62 @@ std::vector<char> setGeometricallyStable(const World& world,
   std::vector<BottomFace> bottom(n);
   for (int i = 0; i < n; ++i) bottom[i] = bottomFaceOf(world.bodies[i], params);
 
-  // A.2 L19-L20 for contacts whose normal is off the y axis.
-  // DEVIATION(A.2 L19-L20): applied to both bodies, and before the sweep. §5.4 asks that all of
-  // a body's contact normals be along ±y; a side contact has no top body, so applying L20 to
-  // "the top object" alone would rule out one of the two neighbours at random. And a side
-  // contact's points reach as high as the body's top face, where they tie with the contacts
+  // SETGEOMETRICALLYSTABLE L19-L20: contacts whose normal is off the y axis.
+  // DEVIATION(SETGEOMETRICALLYSTABLE L19-L20): applied to both bodies, and before the sweep. §5.4
+  // asks that all of a body's contact normals be along ±y; a side contact has no top body, so
+  // applying L20 to "the top object" alone would rule out one of the two neighbours at random. And
+  // a side contact's points reach as high as the body's top face, where they tie with the contacts
   // of the bodies resting on it: un-marking the body in the sweep could come after those were
-  // marked stable on its strength. Ruling it out first gives every body its final verdict
-  // before anything rests on it.
+  // marked stable on its strength. Ruling it out first gives every body its final verdict before
+  // anything rests on it.
   for (const ContactManifold& c : contacts) {
     if (c.count == 0 || alongY(c.normal, params)) continue;
     marks[c.a].ruledOut = true;
     marks[c.b].ruledOut = true;
   }
 
-  // A.2 L6: lowest contact points first, so a bottom body is judged before its top body.
+  // SETGEOMETRICALLYSTABLE L6: lowest contact points first, so a bottom body is judged before its
+  // top body.
   const std::vector<VerticalContact> sorted = sortContactPointsAscending(contacts, params);
 
-  // A.2 L7-L8: each contact point in turn.
+  // SETGEOMETRICALLYSTABLE L7-L8: each contact point in turn.
   for (const VerticalContact& c : sorted) {
-    // A.2 L9-L11: the body judged is the top one.
+    // SETGEOMETRICALLYSTABLE L9-L11: the body judged is the top one.
     const int o = c.top;
-    // DEVIATION(A.2 L20): an immovable top body (a ceiling resting on a box) keeps the verdict
-    // of L2-L3: nothing can move it, whatever is under it.
+    // DEVIATION(SETGEOMETRICALLYSTABLE L20): an immovable top body (a ceiling resting on a box)
+    // keeps the verdict of L2-L3: nothing can move it, whatever is under it.
     if (world.bodies[o].immovable) continue;
 
-    // A.2 L12-L13: the top body's outward normal at the point points down (the manifold normal
-    // is along y and the top body is the one it points away from below) and the bottom body is
-    // already stable.
-    // DEVIATION(A.2 L13): the outward normal is also required to be the top body's own face
-    // normal, i.e. the body is level. A tilted box resting on an edge or a corner touches along
-    // the other body's face normal, yet its own outward normal there is not −y and it has no
-    // bottom plane whose corners could be marked.
+    // SETGEOMETRICALLYSTABLE L12-L13: the top body's outward normal at the point points down (the
+    // manifold normal is along y and the top body is the one it points away from below) and the
+    // bottom body is already stable.
+    // DEVIATION(SETGEOMETRICALLYSTABLE L13): the outward normal is also required to be the top
+    // body's own face normal, i.e. the body is level. A tilted box resting on an edge or a corner
+    // touches along the other body's face normal, yet its own outward normal there is not −y and it
+    // has no bottom plane whose corners could be marked.
     if (bottom[o].level && stable[c.bottom]) {
-      // A.2 L14-L15: mark the bottom-face corners this point coincides with, seen from above.
+      // SETGEOMETRICALLYSTABLE L14-L15: mark the bottom-face corners this point coincides with,
+      // seen from above.
       for (int k = 0; k < 4; ++k)
         if ((c.xz - bottom[o].corners[k]).norm() <= bottom[o].tolerance)
           marks[o].corners[k] = true;
       marks[o].support.push_back(c.xz);
 
-      // A.2 L16-L17: all four corners marked (or, as the footnote's ablation, the support hull
-      // covers the bottom face) and nothing has ruled the body out.
+      // SETGEOMETRICALLYSTABLE L16-L17: all four corners marked (or, as the footnote's ablation,
+      // the support hull covers the bottom face) and nothing has ruled the body out.
       const bool supported =
           params.useSupportHull
               ? hullCoversFace(marks[o].support, bottom[o])
               : std::all_of(marks[o].corners.begin(), marks[o].corners.end(),
                             [](bool marked) { return marked; });
-      // DEVIATION(A.2 L17): a body ruled out earlier stays out; otherwise a later point at the
-      // same height could mark it stable again after L20, and the verdict would depend on the
-      // order of points of equal height.
+      // DEVIATION(SETGEOMETRICALLYSTABLE L17): a body ruled out earlier stays out; otherwise a
+      // later point at the same height could mark it stable again after L20, and the verdict would
+      // depend on the order of points of equal height.
       if (supported && !marks[o].ruledOut) stable[o] = 1;
     } else {
-      // A.2 L18-L20: the outward normal here points down (or, on a tilted box, nowhere along
-      // y), never along +y, and the body under it is not stable: this contact can push the
-      // body, so it is not stable.
+      // SETGEOMETRICALLYSTABLE L18-L20: the outward normal here points down (or, on a tilted box,
+      // nowhere along y), never along +y, and the body under it is not stable: this contact can
+      // push the body, so it is not stable.
       stable[o] = 0;
       marks[o].ruledOut = true;
     }

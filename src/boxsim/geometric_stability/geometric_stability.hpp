@@ -4,7 +4,7 @@
 ///
 /// A movable box qualifies when every one of its contact normals is along ±y and each of the
 /// four corners of its bottom face rests on a body that already qualifies. In the damped
-/// technique, COLLIDE (\alg{A.2 L11-L14}) uses the flags to zero the vertical momentum and the
+/// technique, COLLIDE (\alg{COLLIDE L11-L14}) uses the flags to zero the vertical momentum and the
 /// tipping components of the angular momentum of such bodies; the analytic technique can leave
 /// their stable-to-stable contacts out of its system (\thesis{§5.4}, with that chapter).
 ///
@@ -29,7 +29,8 @@
 namespace boxsim {
 
 /// Tolerances of the geometric-stability test. The thesis leaves the word "equivalent" of
-/// \alg{A.2 L13} and \alg{A.2 L19} and the coincidence of \alg{A.2 L15} unquantified.
+/// \alg{SETGEOMETRICALLYSTABLE L13} and \alg{SETGEOMETRICALLYSTABLE L19} and the coincidence of
+/// \alg{SETGEOMETRICALLYSTABLE L15} unquantified.
 struct GeometricStabilityParams {
   /// Unitless, in [0, 1): a direction n counts as along ±y when 1 − |n·y| is at most this.
   /// It applies to contact normals and to the face normal that makes a box "level". 1e-4 is a
@@ -64,7 +65,7 @@ struct GeometricStabilityParams {
 ///         on the order of bodies or contacts.
 /// \throws std::invalid_argument when a manifold names a body outside the world, or a
 ///         tolerance is negative, not finite, or normalTolerance >= 1.
-/// \thesis{§5.4}, \alg{A.2 L1-L20} (SETGEOMETRICALLYSTABLE); the deviations are in the
+/// \thesis{§5.4}, \alg{SETGEOMETRICALLYSTABLE L1-L20}; the deviations are in the
 /// chapter page \ref chapter_geometric_stability.
 std::vector<char> setGeometricallyStable(const World& world,
                                          const std::vector<ContactManifold>& contacts,

@@ -15,7 +15,7 @@
 ///
 /// - RESOLVECOLLISIONS: every pass has the same restitution and gravity, so "no momentum of the
 ///   island changed" (IslandSettling::Unchanged) is enough.
-/// - RESOLVECONTACTS: the restitution grows from pass to pass (\alg{A.2} RESOLVECONTACTS L5), and
+/// - RESOLVECONTACTS: the restitution grows from pass to pass (\alg{RESOLVECONTACTS L5}), and
 ///   an approaching contact whose impulse rounded to no change might change something at the
 ///   next restitution, or wake a sleeper there. So the island must also have had no impulse
 ///   at all (IslandSettling::Unapproached): every contact separating or at rest, which does not

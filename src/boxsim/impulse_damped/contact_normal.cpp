@@ -82,6 +82,7 @@ void ContactNormalTracker::remember(const World& world, const ContactManifold& m
 
 ImpulseContact ContactNormalTracker::contactOf(const World& world, const ContactManifold& m,
                                                bool record) {
+  // COLLIDE L7: findContactPoint, the centroid of the pair's manifold.
   const Vec3 p = m.centroid();
   const Friction friction = combinedFriction(world.bodies[m.a].friction, world.bodies[m.b].friction);
   ImpulseContact c{m.a,

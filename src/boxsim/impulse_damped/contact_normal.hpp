@@ -15,7 +15,7 @@
 
 namespace boxsim {
 
-/// A collision as COLLIDE sees it (\alg{A.2 L7} findContactPoint): one point and one normal
+/// A collision as COLLIDE sees it (\alg{COLLIDE L7} findContactPoint): one point and one normal
 /// per pair of bodies.
 struct ImpulseContact {
   int a = -1;                   ///< body index

@@ -146,8 +146,10 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   lap(&DampedStepProfile::stepContacts);
   // Islands whose passes changed nothing sit out the rest of the loop (contact_islands.hpp).
   const bool islands = params_.islandSettling;
-  // L1: RESOLVECOLLISIONS — positions predicted with gravity, impulses without; high-speed
-  // collisions perturbed (§4.2).
+  // DAMPEDINTEGRATION L1: RESOLVECOLLISIONS — positions predicted with gravity, impulses
+  // without; high-speed collisions perturbed (§4.2).
+  // RESOLVECOLLISIONS L1, L5: the passes, each colliding with COLLISION_RESTITUTION and
+  // VELOCITY_NO_GRAVITY.
   for (int i = 0; i < params_.impulse.collisionIterations; ++i) {
     const PassResult pass =
         impulsePass(world, dt, world.restitution, GravityMode::VelocityPlusGravity,
@@ -163,7 +165,8 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
     if (pass.settled) break;
   }
   lap(&DampedStepProfile::collisionPasses);
-  // L2: RESOLVECONTACTS — restitution from -1 towards 0 (RESOLVECONTACTS L5), gravity trick.
+  // DAMPEDINTEGRATION L2: RESOLVECONTACTS.
+  // RESOLVECONTACTS L1, L5: the passes, restitution from -1 towards 0, gravity trick.
   if (ContactIslands* settled = gathering_.islands()) settled->activateAll();
   const int iterations = params_.impulse.contactIterations;
   for (int i = 1; i <= iterations; ++i) {
@@ -177,17 +180,20 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
     if (pass.settled) break;
   }
   lap(&DampedStepProfile::contactPasses);
-  // L3: IntegrateObjectVelocities (sleeping bodies stand immovable and are skipped).
+  // DAMPEDINTEGRATION L3: IntegrateObjectVelocities (sleeping bodies stand immovable and are
+  // skipped).
   integrateVelocities(world, dt);
-  // L4: DAMPENOBJECTS (its L22 integrates the positions).
+  // DAMPEDINTEGRATION L4: DAMPENOBJECTS, whose L22 integrates the positions.
   if (params_.damp) {
     dampenObjects(world, dt, touched, params_.damping, params_.impulse.integrator);
   } else {
+    // DAMPENOBJECTS L22: without damping, its position update alone.
     predictPositions(world, dt, Vec3::Zero(), params_.impulse.integrator);
   }
   lap(&DampedStepProfile::velocitiesAndDamping);
   const double restingMargin = restingContactMargin(world, margin, dt);
-  // L5: FIXCONTACTCONSTRAINTS; sleeping bodies still stand in as immovable, so none moves.
+  // DAMPEDINTEGRATION L5: FIXCONTACTCONSTRAINTS; sleeping bodies still stand in as immovable, so
+  // none moves.
   std::vector<ContactManifold> contacts;
   // The broad phase of these contacts, from the step's candidates when they cover it.
   std::vector<std::pair<int, int>> pairs;
@@ -199,8 +205,8 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
     // Nudging moves x alone: the bodies it moved are those whose x changed.
     std::vector<Vec3> before(n);
     for (std::size_t i = 0; i < n; ++i) before[i] = world.bodies[i].s.x;
-    // L6: SETGEOMETRICALLYSTABLE, for the next step's COLLIDE L11-L14, needs the contacts
-    // after L5: those it found, with the pairs of the bodies it nudged found again.
+    // SETGEOMETRICALLYSTABLE, for the next step's COLLIDE L11-L14, needs the contacts after
+    // DAMPEDINTEGRATION L5: those it found, with the pairs of the bodies it nudged found again.
     if (fixContactConstraints(world, restingMargin, params_.fixContacts, dt, &contacts,
                               havePairs ? &pairs : nullptr) > 0) {
       std::vector<char> nudged(n, 0);
@@ -210,6 +216,7 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
     }
   }
   lap(&DampedStepProfile::fixContacts);
+  // DAMPEDINTEGRATION L6: SETGEOMETRICALLYSTABLE.
   if (params_.useGeometricStability) {
     stable_ = setGeometricallyStable(world, contacts, params_.geometricStability);
     sleeping_.holdStability(stable_);

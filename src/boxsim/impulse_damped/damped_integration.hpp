@@ -24,32 +24,35 @@ namespace boxsim {
 
 /// Parameters of damped integration; each stage can be switched off for ablations.
 struct DampedIntegrationParams {
-  ImpulseParams impulse;          ///< collision and contact passes (\alg{A.2 L1-L2})
-  DampingParams damping;          ///< DAMPENOBJECTS (\alg{A.2 L4})
-  FixContactParams fixContacts;   ///< FIXCONTACTCONSTRAINTS (\alg{A.2 L5}); its slop also wakes
-  GeometricStabilityParams geometricStability;  ///< SETGEOMETRICALLYSTABLE (\alg{A.2 L6})
+  ImpulseParams impulse;          ///< collision and contact passes (\alg{DAMPEDINTEGRATION L1-L2})
+  DampingParams damping;          ///< DAMPENOBJECTS (\alg{DAMPEDINTEGRATION L4})
+  /// FIXCONTACTCONSTRAINTS (\alg{DAMPEDINTEGRATION L5}); its slop also wakes
+  FixContactParams fixContacts;
+  /// SETGEOMETRICALLYSTABLE (\alg{DAMPEDINTEGRATION L6})
+  GeometricStabilityParams geometricStability;
   SleepParams sleep;              ///< sleeping bodies at rest (\thesis{§4.5}), on by default
   PlausibilityParams plausibility;  ///< perturbed fast collisions (\thesis{§4.2}), off by default
   /// Continuous collision detection for fast bodies, off by default: when on, a step in which a
   /// fast body would reach another is split at the first time of impact
   /// (continuous_collision.hpp), so the passes gather the contact before the body is past it.
   ContinuousCollisionParams continuousCollision;
-  bool damp = true;               ///< run DAMPENOBJECTS' momentum damping (L1-L21)
+  /// Run DAMPENOBJECTS' momentum damping (\alg{DAMPENOBJECTS L1-L21}).
+  bool damp = true;
   /// Also damp bodies that only collided in the step (RESOLVECOLLISIONS), not just those in
-  /// contact. Off: A.2 L2 damps bodies that "had a contact interaction", and the thesis tells
-  /// contact interactions from collision interactions (\thesis{§2}, \thesis{§5.3}: bodies in
-  /// resting contact). On, a clump of 100 cubes thrown together (Fig. 6.7) comes to rest by
-  /// about 22 s instead of scattering for ever.
+  /// contact. Off: DAMPENOBJECTS L2 damps bodies that "had a contact interaction", and the thesis
+  /// tells contact interactions from collision interactions (\thesis{§2}, \thesis{§5.3}: bodies in
+  /// resting contact). On, a clump of 100 cubes thrown together (Fig. 6.7) comes to rest by about
+  /// 22 s instead of scattering for ever.
   bool dampCollidingBodies = false;
   bool fixContactConstraints = true;   ///< run FIXCONTACTCONSTRAINTS
   bool useGeometricStability = true;   ///< run SETGEOMETRICALLYSTABLE and COLLIDE L11-L14
-  /// Speed only, the same bits either way (tested): RESOLVECOLLISIONS (\alg{A.2} L1) stops
-  /// after a pass that changed no body's momenta or mobility, since every later pass would
+  /// Speed only, the same bits either way (tested): RESOLVECOLLISIONS (\alg{DAMPEDINTEGRATION L1})
+  /// stops after a pass that changed no body's momenta or mobility, since every later pass would
   /// repeat it. Not written into output headers, as it changes no result.
   bool stopUnchangedCollisionPasses = true;
   /// Speed only, the same bits either way (tested): the collision and contact passes
-  /// (\alg{A.2} L1-L2) skip, for the rest of their loop, the islands of the step's contact
-  /// graph that a pass left unchanged (contact_islands.hpp says when that is exact). Needs
+  /// (\alg{DAMPEDINTEGRATION L1-L2}) skip, for the rest of their loop, the islands of the step's
+  /// contact graph that a pass left unchanged (contact_islands.hpp says when that is exact). Needs
   /// ImpulseParams::gathering OncePerStep, which finds the islands; not written into output
   /// headers.
   bool islandSettling = true;
@@ -61,15 +64,17 @@ struct DampedIntegrationParams {
 /// gathering and narrow phases it runs.
 struct DampedStepProfile {
   /// s, the narrow phase of the slow pairs at the step's start and the step's candidate pairs
-  /// (ContactGathering::beginStep), before L1
+  /// (ContactGathering::beginStep), before \alg{DAMPEDINTEGRATION L1}
   double stepContacts = 0.0;
-  double collisionPasses = 0.0;       ///< s, L1 RESOLVECOLLISIONS
-  double contactPasses = 0.0;         ///< s, L2 RESOLVECONTACTS
-  double velocitiesAndDamping = 0.0;  ///< s, L3-L4 (DAMPENOBJECTS' position update included)
-  double fixContacts = 0.0;           ///< s, L5 FIXCONTACTCONSTRAINTS with its contacts found again
-  double stability = 0.0;             ///< s, L6 SETGEOMETRICALLYSTABLE
-  /// s, \thesis{§4.5}: sleeping bodies put in place as immovable before the passes, and
-  /// bodies put to sleep or kept awake after L6 (with the normal model's end of step)
+  double collisionPasses = 0.0;       ///< s, RESOLVECOLLISIONS (\alg{DAMPEDINTEGRATION L1})
+  double contactPasses = 0.0;         ///< s, RESOLVECONTACTS (\alg{DAMPEDINTEGRATION L2})
+  /// s, \alg{DAMPEDINTEGRATION L3-L4} (DAMPENOBJECTS' position update included)
+  double velocitiesAndDamping = 0.0;
+  /// s, FIXCONTACTCONSTRAINTS (\alg{DAMPEDINTEGRATION L5}) with its contacts found again
+  double fixContacts = 0.0;
+  double stability = 0.0;             ///< s, SETGEOMETRICALLYSTABLE (\alg{DAMPEDINTEGRATION L6})
+  /// s, \thesis{§4.5}: sleeping bodies put in place as immovable before the passes, and bodies put
+  /// to sleep or kept awake after \alg{DAMPEDINTEGRATION L6} (with the normal model's end of step)
   double sleeping = 0.0;
   long steps = 0;  ///< steps profiled (pieces of a step split by continuous collision each count)
   /// s, the sum of the stages.
@@ -85,8 +90,8 @@ struct DampedStepProfile {
 /// disturbed, by the rule Sleeping states; the stepper calls it before the passes, before each
 /// COLLIDE and after SETGEOMETRICALLYSTABLE.
 ///
-/// **Visual plausibility** (\thesis{§4.2}): in RESOLVECOLLISIONS (\alg{A.2 L1}) only, a
-/// collision whose bodies approach faster than `plausibility.speedThreshold` has its normal
+/// **Visual plausibility** (\thesis{§4.2}): in RESOLVECOLLISIONS (\alg{DAMPEDINTEGRATION L1}) only,
+/// a collision whose bodies approach faster than `plausibility.speedThreshold` has its normal
 /// turned by a random rotation of at most `plausibility.maxAngleDeg` (VisualPlausibility).
 class DampedIntegrationStepper final : public Stepper {
  public:
@@ -99,14 +104,14 @@ class DampedIntegrationStepper final : public Stepper {
   bool modelsFriction() const override { return true; }
   /// Every parameter, including "seed", the plausibility generator's seed.
   std::map<std::string, std::string> parameters() const override;
-  /// \alg{A.2} DAMPEDINTEGRATION L1-L6 for one step of dt s, with sleeping bodies standing in
+  /// \alg{DAMPEDINTEGRATION L1-L6} for one step of dt s, with sleeping bodies standing in
   /// as immovable and high-speed collisions perturbed as the class comment describes; with
   /// continuous collision detection on, as several such steps that together cover dt, each
   /// ending at the next time of impact of a fast body (at least dt / maxSubsteps long).
   /// StepStats::sleeping counts the bodies asleep after the step.
   StepStats step(World& world, double dt) override;
-  /// The geometric stability of each body found at the end of the last step (\alg{A.2 L6}); a
-  /// sleeping body keeps the flag it had when it fell asleep.
+  /// The geometric stability of each body found at the end of the last step
+  /// (\alg{DAMPEDINTEGRATION L6}); a sleeping body keeps the flag it had when it fell asleep.
   const std::vector<char>& geometricallyStable() const { return stable_; }
   /// One flag per body of the world last stepped, 1 for a body asleep after the last step
   /// (\thesis{§4.5}). Bodies added to the world later start awake.
@@ -123,7 +128,7 @@ class DampedIntegrationStepper final : public Stepper {
   void setProfile(DampedStepProfile* profile) { profile_ = profile; }
 
  private:
-  /// \alg{A.2} DAMPEDINTEGRATION L1-L6 for dt s, as step() without continuous collisions.
+  /// \alg{DAMPEDINTEGRATION L1-L6} for dt s, as step() without continuous collisions.
   StepStats advance(World& world, double dt);
 
   DampedIntegrationParams params_;

@@ -1,5 +1,5 @@
 /// \file
-/// DAMPENOBJECTS (\alg{A.2}, \thesis{§5.3}).
+/// \alg{DAMPENOBJECTS} (\thesis{§5.3}).
 #include "boxsim/impulse_damped/dampen_objects.hpp"
 
 #include <algorithm>
@@ -42,19 +42,19 @@ void dampMomenta(World& world, double dt, const std::vector<char>& touched,
   const double k1 = std::exp(-params.linearRate * dt);
   const double k2 = std::exp(-params.angularRate * dt);
   const double k3 = std::exp(-params.alignedAngularRate * dt);
-  for (std::size_t i = 0; i < world.bodies.size(); ++i) {
+  for (std::size_t i = 0; i < world.bodies.size(); ++i) {  // DAMPENOBJECTS L1
     RigidBody& o = world.bodies[i];
-    // A.2 L2: only bodies that had a contact interaction are damped.
+    // DAMPENOBJECTS L2: only bodies that had a contact interaction are damped.
     if (o.immovable || !touched[i]) continue;
     const double ell = o.halfExtents.minCoeff();
     const double pUnit = o.mass * u;                              // momentum of speed g Δt
     // Angular momentum of spin g Δt / ℓ about an axis of inertia (2/3) m ℓ² (a cube of half side ℓ).
     const double lUnit = (2.0 / 3.0) * o.mass * ell * u;
     const double rotationalBefore = o.s.L.dot(o.omega);
-    // A.2 L3-L5.
-    // DEVIATION(A.2 L3-L5, L9): the rates k1-k3 are the thesis' stand-in for friction (§5.2,
-    // "friction slows things down"); a body with Coulomb friction has the real thing and skips
-    // them, so that friction is not counted twice. The small-velocity tests below (L6-L21),
+    // DAMPENOBJECTS L3-L5.
+    // DEVIATION(DAMPENOBJECTS L3-L5, L9): the rates k1-k3 are the thesis' stand-in for friction
+    // (§5.2, "friction slows things down"); a body with Coulomb friction has the real thing and
+    // skips them, so that friction is not counted twice. The small-velocity tests below (L6-L21),
     // which bring bodies to rest, stay.
     const bool rates = o.friction.frictionless();
     const bool yAxisAligned = isYAxisAligned(o, params.alignedAngleDeg);
@@ -62,8 +62,8 @@ void dampMomenta(World& world, double dt, const std::vector<char>& touched,
       o.s.P *= k1;
       o.s.L *= k2;
     }
-    // A.2 L6-L10: a box lying nearly flat is turned the last bit flat (L10); if it also barely
-    // moves vertically it is resting on a face and loses its vertical velocity (L7-L9).
+    // DAMPENOBJECTS L6-L10: a box lying nearly flat is turned the last bit flat (L10); if it also
+    // barely moves vertically it is resting on a face and loses its vertical velocity (L7-L9).
     if (yAxisAligned) {
       if (std::abs(o.s.P.y()) < params.verticalVelocityEps * pUnit) {
         o.s.P.y() = 0.0;
@@ -71,25 +71,25 @@ void dampMomenta(World& world, double dt, const std::vector<char>& touched,
       }
       tiltTowardsYAxis(o, params.tiltRateDegPerS * kPi / 180.0 * dt);
     }
-    // A.2 L11-L19, component by component.
-    // DEVIATION(A.2 L14): the pseudocode tests ε5 twice, which would zero every component the
-    // first test shrank; the second test uses its own, smaller ε6 (k5 then has an effect).
+    // DAMPENOBJECTS L11-L19: component by component.
+    // DEVIATION(DAMPENOBJECTS L14): the pseudocode tests ε5 twice, which would zero every component
+    // the first test shrank; the second test uses its own, smaller ε6 (k5 then has an effect).
     for (int c = 0; c < 3; ++c) {
       if (std::abs(o.s.P[c]) < params.linearSmallEps * pUnit) o.s.P[c] *= params.linearSmallFactor;
       if (std::abs(o.s.P[c]) < params.linearZeroEps * pUnit) o.s.P[c] = 0.0;
       if (std::abs(o.s.L[c]) < params.angularSmallEps * lUnit) o.s.L[c] *= params.angularSmallFactor;
       if (std::abs(o.s.L[c]) < params.angularZeroEps * lUnit) o.s.L[c] = 0.0;
     }
-    // A.2 L20-L21: a small spin about y is stopped only when it is non-negative, as written
-    // (spinZeroSymmetric: of either sign).
+    // DAMPENOBJECTS L20-L21: a small spin about y is stopped only when it is non-negative, as
+    // written (spinZeroSymmetric: of either sign).
     if (std::abs(o.s.L.y()) < params.spinZeroEps * lUnit &&
         (o.s.L.y() >= 0.0 || params.spinZeroSymmetric))
       o.s.L.y() = 0.0;
     o.updateVelocities();  // R is current: tiltTowardsYAxis updates it when it turns the body
-    // DEVIATION(A.2 L10, L16-L21): the rotational energy ½ Lᵀ R I⁻¹ Rᵀ L is not diagonal in
-    // the world components of L, so scaling or zeroing one of them, or turning the box with L
-    // held (tiltTowardsYAxis), can raise it. §5.3's rule is that damping never adds energy:
-    // where these steps did, L is scaled back to the energy it had on entry.
+    // DEVIATION(DAMPENOBJECTS L10, L16-L21): the rotational energy ½ Lᵀ R I⁻¹ Rᵀ L is not diagonal
+    // in the world components of L, so scaling or zeroing one of them, or turning the box with L
+    // held (tiltTowardsYAxis), can raise it. §5.3's rule is that damping never adds energy: where
+    // these steps did, L is scaled back to the energy it had on entry.
     const double rotationalAfter = o.s.L.dot(o.omega);
     if (rotationalAfter > rotationalBefore) {
       o.s.L *= std::sqrt(rotationalBefore / rotationalAfter);
@@ -103,13 +103,13 @@ DampingStats dampenObjects(World& world, double dt, const std::vector<char>& tou
                            const DampingParams& params, Integrator integrator) {
   DampingStats stats;
   dampMomenta(world, dt, touched, params, &stats);
-  // A.2 L22: integrateObjectPositions(Δt, STANDARD_GRAVITY) with the velocities as they now
-  // are. STANDARD_GRAVITY is read as gravity applied the usual way, which L3 already did to the
+  // DAMPENOBJECTS L22: integrateObjectPositions(Δt, STANDARD_GRAVITY) with the velocities as they
+  // now are. STANDARD_GRAVITY is read as gravity applied the usual way, which L3 already did to the
   // velocities; adding g Δt again, as the passes' VELOCITY_PLUS_GRAVITY does for a prediction,
   // would count the step's gravity twice in the positions.
   const SavedPoses old = predictPositions(world, dt, Vec3::Zero(), integrator);
-  // A.2 L23-L28: a body that would move less than ε10 and turn less than ε11 stays put.
-  // DEVIATION(A.2 L23): only bodies that had a contact interaction and lie with a face
+  // DAMPENOBJECTS L23-L28: a body that would move less than ε10 and turn less than ε11 stays put.
+  // DEVIATION(DAMPENOBJECTS L23): only bodies that had a contact interaction and lie with a face
   // perpendicular to gravity (§5.3's third mark of a chattering body) are snapped. A body in
   // free flight at the top of its arc moves little in one step too and must not hang there,
   // and a box just starting to tip off an edge moves little too: snapping it holds its pose,

@@ -15,27 +15,30 @@ namespace boxsim {
 /// What DAMPENOBJECTS did in one step.
 struct DampingStats {
   int damped = 0;   ///< bodies that had a contact interaction and were damped
-  int snapped = 0;  ///< bodies kept in place by the position/rotation snap (L23-L28)
+  /// Bodies kept in place by the position/rotation snap (\alg{DAMPENOBJECTS L23-L28}).
+  int snapped = 0;
 };
 
-/// True when one of the box's axes lies within `angleDeg` of the y axis (\alg{A.2 L3}
+/// True when one of the box's axes lies within `angleDeg` of the y axis (\alg{DAMPENOBJECTS L3}
 /// checkYAxisAlignment).
 bool isYAxisAligned(const RigidBody& body, double angleDeg);
 
 /// Turns a body about its centre by at most `maxAngle` rad towards the nearest orientation
-/// with a face perpendicular to y (\alg{A.2 L10} tiltTowardsYAxis).
+/// with a face perpendicular to y (\alg{DAMPENOBJECTS L10} tiltTowardsYAxis).
 void tiltTowardsYAxis(RigidBody& body, double maxAngle);
 
-/// Scales the momenta of the bodies marked `touched` (one flag per body) as \alg{A.2 L1-L21},
-/// with the thresholds of `params` turned into momenta for each body: velocities in units of
-/// g Δt times the mass, angular velocities in units of g Δt / ℓ times (2/3) m ℓ² (ℓ the body's
-/// smallest half extent). Never raises a body's kinetic energy. Does not move bodies.
+/// Scales the momenta of the bodies marked `touched` (one flag per body) as
+/// \alg{DAMPENOBJECTS L1-L21}, with the thresholds of `params` turned into momenta for each body:
+/// velocities in units of g Δt times the mass, angular velocities in units of g Δt / ℓ times (2/3)
+/// m ℓ² (ℓ the body's smallest half extent). Never raises a body's kinetic energy. Does not move
+/// bodies.
 void dampMomenta(World& world, double dt, const std::vector<char>& touched,
                  const DampingParams& params, DampingStats* stats = nullptr);
 
-/// The whole of DAMPENOBJECTS (\alg{A.2 L1-L28}): dampMomenta, then integrateObjectPositions
-/// with the current velocities (L22, predictPositions with `integrator`), then the snap of
-/// L23-L28 for bodies in contact that lie with a face perpendicular to gravity.
+/// The whole of DAMPENOBJECTS (\alg{DAMPENOBJECTS L1-L28}): dampMomenta, then
+/// integrateObjectPositions with the current velocities (\alg{DAMPENOBJECTS L22}, predictPositions
+/// with `integrator`), then the snap of
+/// \alg{DAMPENOBJECTS L23-L28} for bodies in contact that lie with a face perpendicular to gravity.
 DampingStats dampenObjects(World& world, double dt, const std::vector<char>& touched,
                            const DampingParams& params,
                            Integrator integrator = Integrator::SemiImplicitEuler);

@@ -22,7 +22,7 @@ double fixLiftLimit(const RigidBody& body, const FixContactParams& params, const
 int fixContactConstraints(World& world, double margin, const FixContactParams& params, double dt,
                           std::vector<ContactManifold>* gathered,
                           const std::vector<std::pair<int, int>>* pairs) {
-  // A.2 L1: sortContactPointsAscending.
+  // FIXCONTACTCONSTRAINTS L1: sortContactPointsAscending.
   std::vector<ContactManifold> contacts =
       pairs ? findContacts(world, margin, *pairs) : findContacts(world, margin);
   if (gathered) *gathered = contacts;
@@ -30,8 +30,9 @@ int fixContactConstraints(World& world, double margin, const FixContactParams& p
   std::stable_sort(contacts.begin(), contacts.end(),
                    [&](const ContactManifold& l, const ContactManifold& r) { return key(l) < key(r); });
   int nudges = 0;
-  for (const ContactManifold& c : contacts) {
-    // A.2 L3-L5: the upper body moves, along the normal pointing from the lower one to it.
+  for (const ContactManifold& c : contacts) {  // FIXCONTACTCONSTRAINTS L2
+    // FIXCONTACTCONSTRAINTS L3-L5: the upper body moves, along the normal pointing from the lower
+    // one to it.
     const bool aUpper = world.bodies[c.a].s.x.y() > world.bodies[c.b].s.x.y();
     const int upper = aUpper ? c.a : c.b;
     const int lower = aUpper ? c.b : c.a;
@@ -44,7 +45,7 @@ int fixContactConstraints(World& world, double margin, const FixContactParams& p
     // both apart, half a nudge each; the pair's relative motion per nudge is the same.
     const bool share = params.sideShareAngleDeg > 0.0 && !other.immovable &&
                        std::abs(c.normal.y()) < std::cos(params.sideShareAngleDeg * kPi / 180.0);
-    // A.2 L6-L7: nudge while they still intersect (beyond the documented slop).
+    // FIXCONTACTCONSTRAINTS L6-L7: nudge while they still intersect (beyond the documented slop).
     const double slop = params.slop * ell;
     const double step = params.nudge * ell;  // m, the length of one nudge (|offset| = 1)
     const auto limit =
@@ -58,7 +59,7 @@ int fixContactConstraints(World& world, double margin, const FixContactParams& p
       // One nudge, then more while the test before each is certain to find the pair still
       // deeper than the slop (depthAfterTranslationAtLeast, 1.01 for |offset| = 1 up to
       // rounding): those tests are left out, the nudges are the same additions, and the
-      // loop stops where A.2 L6-L7 would.
+      // loop stops where FIXCONTACTCONSTRAINTS L6-L7 would.
       int k = 0;
       do {
         if (share) {

@@ -19,21 +19,21 @@ namespace boxsim {
 /// ω the velocities the positions were integrated with, g the world's gravity), so a body the
 /// step carried deep into a contact can be brought out. Units of the nudge: ε1 ℓ.
 ///
-/// DEVIATION(A.2 L6-L7): \alg{A.2} nudges while the pair intersects, with no bound; the guard
-/// against a contact that cannot be fixed upwards was a fixed 0.1 ℓ, less than one step of
-/// fall at large Δt (g Δt² = 9.8 cm at Δt = 0.1 s, 1.5 ℓ for a 13 cm plank), so a body pressed
-/// into the ground by a heavy pile sank a little further every step.
+/// DEVIATION(FIXCONTACTCONSTRAINTS L6-L7): \alg{FIXCONTACTCONSTRAINTS} nudges while the pair
+/// intersects, with no bound; the guard against a contact that cannot be fixed upwards was a fixed
+/// 0.1 ℓ, less than one step of fall at large Δt (g Δt² = 9.8 cm at Δt = 0.1 s, 1.5 ℓ for a 13 cm
+/// plank), so a body pressed into the ground by a heavy pile sank a little further every step.
 double fixLiftLimit(const RigidBody& body, const FixContactParams& params, const Vec3& gravity,
                     double dt);
 
-/// Contacts gathered with `margin` (m) are sorted by the height of their point (\alg{A.2 L1});
-/// for each, the upper body (higher centre; skipped when immovable) is nudged by ε1 ℓ along the
-/// lower-to-upper normal while the pair still overlaps by more than the slop (\alg{A.2 L2-L7}),
-/// at most fixLiftLimit for a step of `dt` (s). ℓ is the upper body's smallest half extent.
-/// Sleeping bodies stand in as immovable while this runs, so they are never moved.
-/// `gathered`, when given, receives the contacts found before any nudge, in findContacts order:
-/// with no nudge made they are the contacts of the world as it is left, which saves the caller
-/// a narrow phase.
+/// Contacts gathered with `margin` (m) are sorted by the height of their point
+/// (\alg{FIXCONTACTCONSTRAINTS L1}); for each, the upper body (higher centre; skipped when
+/// immovable) is nudged by ε1 ℓ along the lower-to-upper normal while the pair still overlaps by
+/// more than the slop (\alg{FIXCONTACTCONSTRAINTS L2-L7}), at most fixLiftLimit for a step of `dt`
+/// (s). ℓ is the upper body's smallest half extent. Sleeping bodies stand in as immovable while
+/// this runs, so they are never moved. `gathered`, when given, receives the contacts found before
+/// any nudge, in findContacts order: with no nudge made they are the contacts of the world as it is
+/// left, which saves the caller a narrow phase.
 /// \return the number of nudges made.
 /// `pairs`, when given, is candidatePairs(world, margin) found by the caller (the contact
 /// gathering's step candidates, ContactGathering::stepPairs), which spares the broad phase.

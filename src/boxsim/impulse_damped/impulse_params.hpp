@@ -53,7 +53,7 @@ ContactGatheringMode parseContactGathering(const std::string& name);
 struct ImpulseParams {
   /// Passes of collision processing (restitution `restitution`), Guendelman §7: 5.
   int collisionIterations = 5;
-  /// Passes of contact processing with the restitution ramp of \alg{A.2 L5}: 10.
+  /// Passes of contact processing with the restitution ramp of \alg{RESOLVECONTACTS L5}: 10.
   int contactIterations = 10;
   /// How contact normals are chosen (collisions use the world's restitution, 0.9 by default
   /// as \thesis{§3.3.2}).
@@ -65,13 +65,13 @@ struct ImpulseParams {
   /// instead of one per pass (contact_gathering.hpp states the deviation and its error bound).
   ContactGatheringMode gathering = ContactGatheringMode::OncePerStep;
   /// How the step's last stage moves the bodies with their new velocities (integrateObjectPositions,
-  /// \alg{A.2 L22}; Guendelman et al.'s position update). SemiImplicitEuler, the default and
-  /// the thesis': x += Δt v and the explicit quaternion step q += ½ Δt ω q, renormalised.
-  /// SplitRotation: the same x, and the rotation of integrator.hpp that keeps a free body's
-  /// energy and |L| (a free box spinning near its intermediate axis gains 417 % of its energy
-  /// in 10 s at 60 Hz under the default, measured). The velocities come from the impulses and
-  /// gravity before the positions by construction, so ForwardEuler and RungeKutta4 are refused.
-  /// The passes' predicted poses (\alg{A.2} RESOLVECOLLISIONS L2) keep the explicit step.
+  /// \alg{DAMPENOBJECTS L22}; Guendelman et al.'s position update). SemiImplicitEuler, the default
+  /// and the thesis': x += Δt v and the explicit quaternion step q += ½ Δt ω q, renormalised.
+  /// SplitRotation: the same x, and the rotation of integrator.hpp that keeps a free body's energy
+  /// and |L| (a free box spinning near its intermediate axis gains 417 % of its energy in 10 s at
+  /// 60 Hz under the default, measured). The velocities come from the impulses and gravity before
+  /// the positions by construction, so ForwardEuler and RungeKutta4 are refused. The passes'
+  /// predicted poses (\alg{RESOLVECOLLISIONS L2}) keep the explicit step.
   Integrator integrator = Integrator::SemiImplicitEuler;
   /// Where the impulses of a pass act. false, \alg{A.2} as written: on each body at the lever
   /// arm of the pose the contact was found at, r' = p - x' (contact_gathering.hpp, "Where
@@ -107,46 +107,48 @@ struct ImpulseParams {
 /// Constants of DAMPENOBJECTS (\alg{A.2}), in the scaled units of this file's introduction.
 struct DampingParams {
   /// λ1, 1/s: rate at which the linear momentum of a body in contact decays, k1 = exp(-λ1 Δt)
-  /// (\alg{A.2 L4}). 3/s takes off 5 % per 60 Hz step: friction-like sliding that stops a
+  /// (\alg{DAMPENOBJECTS L4}). 3/s takes off 5 % per 60 Hz step: friction-like sliding that stops a
   /// 1 m/s slide in about a second, slow enough not to look glued.
   double linearRate = 3.0;
-  /// λ2, 1/s: the same for angular momentum, k2 (\alg{A.2 L5}).
+  /// λ2, 1/s: the same for angular momentum, k2 (\alg{DAMPENOBJECTS L5}).
   double angularRate = 3.0;
-  /// Degrees: a box counts as y-axis aligned (a face perpendicular to gravity, \thesis{§5.3})
-  /// when one of its axes is within this angle of y (\alg{A.2 L3}). 3° is below what the eye
+  /// Degrees: a box counts as y-axis aligned (a face perpendicular to gravity, \thesis{§5.3}) when
+  /// one of its axes is within this angle of y (\alg{DAMPENOBJECTS L3}). 3° is below what the eye
   /// reads as tilted for a box at rest.
   double alignedAngleDeg = 3.0;
-  /// ε3, g Δt: an aligned body whose vertical velocity is below this loses it (\alg{A.2 L7-L8}).
-  /// 2 g Δt: a resting box's chatter is about one g Δt.
+  /// ε3, g Δt: an aligned body whose vertical velocity is below this loses it
+  /// (\alg{DAMPENOBJECTS L7-L8}). 2 g Δt: a resting box's chatter is about one g Δt.
   double verticalVelocityEps = 2.0;
-  /// λ3, 1/s: the angular momentum of such a body then decays at this rate (k3, \alg{A.2 L9}):
-  /// 20/s, a tenth of a second to stop rocking.
+  /// λ3, 1/s: the angular momentum of such a body then decays at this rate (k3,
+  /// \alg{DAMPENOBJECTS L9}): 20/s, a tenth of a second to stop rocking.
   double alignedAngularRate = 20.0;
-  /// ε4, degrees per second: tiltTowardsYAxis turns an aligned body towards exact alignment by
-  /// at most this rate (\alg{A.2 L10}); 10°/s closes a 3° tilt in 0.3 s, too slowly to see.
+  /// ε4, degrees per second: tiltTowardsYAxis turns an aligned body towards exact alignment by at
+  /// most this rate (\alg{DAMPENOBJECTS L10}); 10°/s closes a 3° tilt in 0.3 s, too slowly to see.
   double tiltRateDegPerS = 10.0;
-  /// ε5, g Δt: a linear velocity component below this is scaled by k5 (\alg{A.2 L12-L13}).
+  /// ε5, g Δt: a linear velocity component below this is scaled by k5
+  /// (\alg{DAMPENOBJECTS L12-L13}).
   double linearSmallEps = 1.0;
   /// k5, unitless: 0.5.
   double linearSmallFactor = 0.5;
-  /// ε6, g Δt: a component still below this is zeroed (\alg{A.2 L14-L15}).
+  /// ε6, g Δt: a component still below this is zeroed (\alg{DAMPENOBJECTS L14-L15}).
   double linearZeroEps = 0.1;
-  /// ε7, g Δt / ℓ: an angular velocity component below this is scaled by k7 (\alg{A.2 L16-L17}).
+  /// ε7, g Δt / ℓ: an angular velocity component below this is scaled by k7
+  /// (\alg{DAMPENOBJECTS L16-L17}).
   double angularSmallEps = 1.0;
   /// k7, unitless: 0.5.
   double angularSmallFactor = 0.5;
-  /// ε8, g Δt / ℓ: a component still below this is zeroed (\alg{A.2 L18-L19}).
+  /// ε8, g Δt / ℓ: a component still below this is zeroed (\alg{DAMPENOBJECTS L18-L19}).
   double angularZeroEps = 0.1;
-  /// ε9, g Δt / ℓ: a small non-negative spin about y is zeroed (\alg{A.2 L20-L21}).
+  /// ε9, g Δt / ℓ: a small non-negative spin about y is zeroed (\alg{DAMPENOBJECTS L20-L21}).
   double spinZeroEps = 1.0;
-  /// \alg{A.2 L20} zeroes a small spin about y only when it is non-negative. Nothing in
-  /// \thesis{§5.3} tells one sense of turning from the other, so the sign test reads as a slip
-  /// of the pseudocode: a box turning as slowly the other way keeps turning. False (the
-  /// default) runs L20 as written; true zeroes a small spin of either sign (the symmetric
-  /// reading). The chapter page gives the measured effect.
+  /// \alg{DAMPENOBJECTS L20} zeroes a small spin about y only when it is non-negative. Nothing in
+  /// \thesis{§5.3} tells one sense of turning from the other, so the sign test reads as a slip of
+  /// the pseudocode: a box turning as slowly the other way keeps turning. False (the default) runs
+  /// DAMPENOBJECTS L20 as written; true zeroes a small spin of either sign (the symmetric reading).
+  /// The chapter page gives the measured effect.
   bool spinZeroSymmetric = false;
   /// ε10, in units of g Δt²: a body that would move less than this in the step stays where it
-  /// was (\alg{A.2 L26-L28}). 0.5 g Δt², half of what one step of gravity moves it.
+  /// was (\alg{DAMPENOBJECTS L26-L28}). 0.5 g Δt², half of what one step of gravity moves it.
   double positionSnapEps = 0.5;
   /// ε11, unitless quaternion distance per (g Δt² / ℓ): the same for rotation.
   double rotationSnapEps = 0.5;
@@ -154,15 +156,15 @@ struct DampingParams {
 
 /// FIXCONTACTCONSTRAINTS (\thesis{§4.4}, \alg{A.2}).
 struct FixContactParams {
-  /// ε1, in units of ℓ: the upward nudge per iteration (\alg{A.2 L7}). 2e-4 ℓ.
+  /// ε1, in units of ℓ: the upward nudge per iteration (\alg{FIXCONTACTCONSTRAINTS L7}). 2e-4 ℓ.
   double nudge = 2e-4;
   /// Documented slop, in units of ℓ: a pair counts as intersecting while its penetration
-  /// exceeds this (\alg{A.2 L6}). 1e-3 ℓ: 1 mm for unit boxes.
-  /// DEVIATION(\alg{A.2 L6}): intersecting() has no tolerance in the pseudocode. The slop is
-  /// also the depth at which a contact wakes a sleeper (\thesis{§4.5}, sleeping.hpp). With 0,
-  /// the aligned towers and pyramids stay exactly as still (they never overlap), but boxes
-  /// that come to rest a hair inside one another are nudged and woken: the shot base-10
-  /// pyramid ends its 10 s with 4 boxes asleep instead of 32 (measured).
+  /// exceeds this (\alg{FIXCONTACTCONSTRAINTS L6}). 1e-3 ℓ: 1 mm for unit boxes.
+  /// DEVIATION(FIXCONTACTCONSTRAINTS L6): intersecting() has no tolerance in the pseudocode. The
+  /// slop is also the depth at which a contact wakes a sleeper (\thesis{§4.5}, sleeping.hpp). With
+  /// 0, the aligned towers and pyramids stay exactly as still (they never overlap), but boxes that
+  /// come to rest a hair inside one another are nudged and woken: the shot base-10 pyramid ends its
+  /// 10 s with 4 boxes asleep instead of 32 (measured).
   double slop = 1e-3;
   /// Most nudges per contact, a guard against a contact that cannot be fixed upwards: 500,
   /// a lift of 0.1 ℓ. A body may be nudged further, by as far as the step can have carried it
@@ -170,14 +172,12 @@ struct FixContactParams {
   int maxNudges = 500;
   /// Degrees: side contacts, whose normal is further than this from the vertical (|n_y| below
   /// its cosine), are fixed by moving both bodies apart, half a nudge each, when both are
-  /// movable. 0 moves the upper body alone everywhere, as \alg{A.2 L3-L5} does.
-  /// DEVIATION(A.2 L3-L5): with the upper body alone, a box squeezed between two side
-  /// neighbours is pushed out of one into the other and back, and sinks into one of them step
-  /// after step: the settling pile of 343 cubes at e = 0 ends 50 mm deep frictionless and
-  /// 61-631 mm with μ = 0.5; shared, 1.3 mm and 3.0-8.9 mm (impulse chapter, "The constants
-  /// of A.2").
-  /// Towers, pyramids and the die are unchanged bit for bit (their side contacts are within
-  /// the slop).
+  /// movable. 0 moves the upper body alone everywhere, as \alg{FIXCONTACTCONSTRAINTS L3-L5} does.
+  /// DEVIATION(FIXCONTACTCONSTRAINTS L3-L5): with the upper body alone, a box squeezed between two
+  /// side neighbours is pushed out of one into the other and back, and sinks into one of them step
+  /// after step: the settling pile of 343 cubes at e = 0 ends 50 mm deep frictionless and 61-631 mm
+  /// with μ = 0.5; shared, 1.3 mm and 3.0-8.9 mm (impulse chapter, "The constants of A.2"). Towers,
+  /// pyramids and the die are unchanged bit for bit (their side contacts are within the slop).
   double sideShareAngleDeg = 45.0;
 };
 
@@ -185,16 +185,16 @@ struct FixContactParams {
 /// and act as immovable until something disturbs them. The thesis names the idea and gives no
 /// rule; the rule and every threshold here are ours (sleeping.hpp states the rule).
 /// Speeds are in units of g Δt, as in DampingParams: a resting contact seen through the gravity
-/// trick of \alg{A.2 L1-L6} approaches at about 1 g Δt, so thresholds a few times that separate
+/// trick of \alg{COLLIDE L1-L6} approaches at about 1 g Δt, so thresholds a few times that separate
 /// a disturbance from the load of a body at rest.
 struct SleepParams {
   /// Ablation switch: false keeps every body awake, \alg{A.2} as written.
   bool enabled = true;
-  /// s: how long a body must have had exactly zero momenta and an unchanged pose before it
-  /// falls asleep; turned into round(t / Δt) steps, at least 1. 0.5 s (30 steps at 60 Hz):
-  /// DAMPENOBJECTS' zeroing and snap (\alg{A.2 L14-L28}) can hold a slowly toppling box still
-  /// for a few steps while gravity builds its velocity up again; half a second of stillness
-  /// is well beyond that, and short enough that a settled pile stops costing almost at once.
+  /// s: how long a body must have had exactly zero momenta and an unchanged pose before it falls
+  /// asleep; turned into round(t / Δt) steps, at least 1. 0.5 s (30 steps at 60 Hz): DAMPENOBJECTS'
+  /// zeroing and snap (\alg{DAMPENOBJECTS L14-L28}) can hold a slowly toppling box still for a few
+  /// steps while gravity builds its velocity up again; half a second of stillness is well beyond
+  /// that, and short enough that a settled pile stops costing almost at once.
   double timeToSleep = 0.5;
   /// g Δt: a sleeping body wakes when an awake body comes at it faster than this along the
   /// contact normal. 4 g Δt (0.65 m/s at 60 Hz, the speed of a drop from 2.2 cm): twice

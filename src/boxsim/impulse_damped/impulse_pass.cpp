@@ -28,7 +28,8 @@ struct BodyMomenta {
   }
 };
 
-/// A.2 L5-L8: both bodies get deltaV, then the Newtonian impulse at the contact; returns j.
+/// COLLIDE L5-L6, L8: both bodies get deltaV, then the Newtonian impulse at the contact (its
+/// point found by COLLIDE L7, ContactNormalTracker::contactOf); returns j.
 double impulseWithGravity(RigidBody& a, RigidBody& b, const ImpulseContact& contact,
                           double restitution, const Vec3& deltaV, FrictionTotals* totals,
                           bool restarted) {
@@ -59,7 +60,7 @@ double collide(World& world, const ImpulseContact& contact, double restitution, 
                double dt, const std::vector<char>& stable, FrictionTotals* totals) {
   RigidBody& a = world.bodies[contact.a];
   RigidBody& b = world.bodies[contact.b];
-  // A.2 L1-L8: the gravity trick, so a resting contact sees the velocity gravity is about to
+  // COLLIDE L1-L8: the gravity trick, so a resting contact sees the velocity gravity is about to
   // add, then one contact point per collision and the Newtonian impulse there.
   const Vec3 deltaV = gravityVelocity(world, gravity, dt);
   // A geometrically stable body's vertical momentum is reset below, so each pass's impulse on
@@ -67,10 +68,10 @@ double collide(World& world, const ImpulseContact& contact, double restitution, 
   const auto isStable = [&](int i) { return !stable.empty() && stable[i] && !world.bodies[i].immovable; };
   const double j = impulseWithGravity(a, b, contact, restitution, deltaV, totals,
                                       isStable(contact.a) || isStable(contact.b));
-  // A.2 L9-L10.
+  // COLLIDE L9-L10.
   addVelocity(a, -deltaV);
   addVelocity(b, -deltaV);
-  // A.2 L11-L14: a geometrically stable body neither rises nor tips.
+  // COLLIDE L9, L11-L14: a geometrically stable body neither rises nor tips.
   for (RigidBody* body : {&a, &b}) {
     const int index = body == &a ? contact.a : contact.b;
     if (stable.empty() || !stable[index] || body->immovable) continue;
@@ -86,7 +87,8 @@ double approachSpeed(const World& world, const ImpulseContact& contact, GravityM
                      double dt) {
   const RigidBody& a = world.bodies[contact.a];
   const RigidBody& b = world.bodies[contact.b];
-  // A.2 L1-L6: g Δt is added to movable bodies only, so it cancels between two movable ones.
+  // The gravity trick of COLLIDE L1-L6: g Δt is added to movable bodies only, so it cancels
+  // between two movable ones.
   const Vec3 deltaV = gravityVelocity(world, gravity, dt);
   return -relativeNormalVelocity(a, b, contact.ra, contact.rb, contact.normal) -
          contact.normal.dot((b.immovable ? Vec3(Vec3::Zero()) : deltaV) -
@@ -106,11 +108,13 @@ PassResult impulsePass(World& world, double dt, double restitution, GravityMode 
                        const std::vector<char>& stable, std::vector<char>* touched,
                        const BeforeCollide& beforeCollide, FrictionTotals* totals,
                        IslandSettling settling) {
-  // L2-L3: integrateObjectPositions and gatherCollisions; L6, revertToOriginalPositions, too:
-  // the contacts keep the lever arms of the poses they were found at.
-  // DEVIATION(A.2 L4-L6): COLLIDE after the revert (contact_gathering.hpp, "Where COLLIDE acts").
+  // RESOLVECOLLISIONS L2-L3, L6 and RESOLVECONTACTS L2-L3, L6: integrateObjectPositions and
+  // gatherCollisions, and revertToOriginalPositions too: the contacts keep the lever arms of
+  // the poses they were found at.
+  // DEVIATION(RESOLVECOLLISIONS L4-L6, RESOLVECONTACTS L4-L6): COLLIDE after the revert
+  // (contact_gathering.hpp, "Where COLLIDE acts").
   std::vector<ImpulseContact>& contacts = gathering.begin(world, dt, predict, margin);
-  // L4-L5: collide every pair.
+  // RESOLVECOLLISIONS L4-L5 and RESOLVECONTACTS L4-L5: collide every pair.
   PassResult result;
   result.contacts = static_cast<int>(contacts.size());
   const CollideCall call{restitution, impulseGravity, dt};

@@ -19,21 +19,21 @@
 namespace boxsim {
 
 /// The impulses of one contact between a and b (the contact's bodies, or stand-ins for them):
-/// the Newtonian impulse at the contact's lever arms ra, rb (\alg{A.2 L7-L8}: one point per
+/// the Newtonian impulse at the contact's lever arms ra, rb (\alg{COLLIDE L7-L8}: one point per
 /// collision); with friction, applyPatchFriction before it, on the pair's sums for the step
 /// from `totals` (a budget of this impulse alone when `totals` is null: nothing before it).
 /// The pair's budget grows by the normal impulse, or, when `restarted` (a geometrically stable
-/// body's vertical momentum is reset after every COLLIDE, \alg{A.2} COLLIDE L11-L14, so each
+/// body's vertical momentum is reset after every COLLIDE, \alg{COLLIDE L11-L14}, so each
 /// pass's impulse is a new estimate of the same support), becomes the largest of them.
 /// \return the normal impulse, N s.
 double contactImpulse(RigidBody& a, RigidBody& b, const ImpulseContact& contact, double restitution,
                       FrictionTotals* totals, bool restarted = false);
 
 /// COLLIDE(collision, restitution, gravity) of \alg{A.2}: with VelocityPlusGravity both bodies'
-/// velocities get g Δt added for the impulse and taken off after (L1-L6, L9-L10); the Newtonian
-/// impulse with `restitution` acts at the contact's lever arms ra, rb along its normal
-/// (L7-L8); then a geometrically stable body loses its vertical momentum and its tipping
-/// angular momentum (L11-L14). `stable` is empty or has one flag per body.
+/// velocities get g Δt added for the impulse and taken off after (\alg{COLLIDE L1-L6, L9-L10}); the
+/// Newtonian impulse with `restitution` acts at the contact's lever arms ra, rb along its normal
+/// (\alg{COLLIDE L7-L8}); then a geometrically stable body loses its vertical momentum and its
+/// tipping angular momentum (\alg{COLLIDE L11-L14}). `stable` is empty or has one flag per body.
 /// \return the impulse magnitude applied, N s (0 when the bodies separate at the point).
 /// `totals` holds the step's impulses per contact point for friction (contactImpulse); it may
 /// be null for frictionless worlds.
@@ -41,13 +41,13 @@ double collide(World& world, const ImpulseContact& contact, double restitution, 
                double dt, const std::vector<char>& stable, FrictionTotals* totals = nullptr);
 
 /// The relative normal speed at which the bodies of `contact` approach as COLLIDE with
-/// `gravity` sees it (\alg{A.2} COLLIDE L1-L6: under VelocityPlusGravity each movable body's
+/// `gravity` sees it (\alg{COLLIDE L1-L6}: under VelocityPlusGravity each movable body's
 /// velocity includes the g Δt of the coming step, dt in s), m/s; positive when they approach.
 double approachSpeed(const World& world, const ImpulseContact& contact, GravityMode gravity,
                      double dt);
 
 /// The magnitude of the Newtonian impulse COLLIDE(contact, restitution, gravity) would apply
-/// (\alg{A.2} COLLIDE L1-L8), N s, computed on copies of the two bodies: the world is not
+/// (\alg{COLLIDE L1-L8}), N s, computed on copies of the two bodies: the world is not
 /// changed. Zero when the bodies separate at the point.
 double collideImpulse(const World& world, const ImpulseContact& contact, double restitution,
                       GravityMode gravity, double dt);
@@ -77,26 +77,26 @@ struct PassResult {
   bool settled = false;
 };
 
-/// One pass of RESOLVECOLLISIONS / RESOLVECONTACTS (\alg{A.2} L2-L6 of either):
-/// integrateObjectPositions (x += Δt v', q += Δt ½ ω q with v' = v + g Δt under
-/// `predict` = VelocityPlusGravity), gatherCollisions (every pair closer than `margin` m),
-/// revertToOriginalPositions, then COLLIDE each with `restitution` and `impulseGravity` at the
-/// lever arms the gathering gives (DEVIATION(A.2 L4-L6): the revert comes first;
-/// contact_gathering.hpp, "Where COLLIDE acts"); `gathering` does
-/// the moving and gathering, exactly or to first order (contact_gathering.hpp). Bodies marked in
-/// `touched` (one flag per body, or empty) get their flag set when they take part in a contact.
+/// One pass of RESOLVECOLLISIONS / RESOLVECONTACTS (\alg{RESOLVECOLLISIONS L2-L6},
+/// \alg{RESOLVECONTACTS L2-L6}): integrateObjectPositions (x += Δt v', q += Δt ½ ω q with v' = v +
+/// g Δt under `predict` = VelocityPlusGravity), gatherCollisions (every pair closer than `margin`
+/// m), revertToOriginalPositions, then COLLIDE each with `restitution` and `impulseGravity` at the
+/// lever arms the gathering gives (DEVIATION(RESOLVECOLLISIONS L4-L6, RESOLVECONTACTS L4-L6): the
+/// revert comes first; contact_gathering.hpp, "Where COLLIDE acts"); `gathering` does the moving
+/// and gathering, exactly or to first order (contact_gathering.hpp). Bodies marked in `touched`
+/// (one flag per body, or empty) get their flag set when they take part in a contact.
 /// `beforeCollide`, when set, sees each contact just before its COLLIDE; `totals`, the step's
 /// friction budget, goes to COLLIDE. With `settling` other than Never and a gathering that has
-/// islands (OncePerStep), an island the pass left unchanged by that rule is settled: later
-/// passes skip it until ContactIslands::activateAll (contact_islands.hpp; the same bits).
+/// islands (OncePerStep), an island the pass left unchanged by that rule is settled: later passes
+/// skip it until ContactIslands::activateAll (contact_islands.hpp; the same bits).
 PassResult impulsePass(World& world, double dt, double restitution, GravityMode predict,
                        GravityMode impulseGravity, double margin, ContactGathering& gathering,
                        const std::vector<char>& stable, std::vector<char>* touched = nullptr,
                        const BeforeCollide& beforeCollide = {}, FrictionTotals* totals = nullptr,
                        IslandSettling settling = IslandSettling::Never);
 
-/// IntegrateObjectVelocities of \alg{A.2 L3} (and Guendelman et al.'s velocity update):
-/// P += Δt m g for every movable body; positions are not touched.
+/// IntegrateObjectVelocities of \alg{DAMPEDINTEGRATION L3} (and Guendelman et al.'s velocity
+/// update): P += Δt m g for every movable body; positions are not touched.
 void integrateVelocities(World& world, double dt);
 
 /// The margin (m) for contacts gathered at the end of a step: `margin` plus g Δt². Contacts are

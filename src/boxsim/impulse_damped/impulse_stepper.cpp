@@ -35,7 +35,7 @@ StepStats ImpulseStepper::step(World& world, double dt) {
                         .impulses;
   // 2. Velocities.
   integrateVelocities(world, dt);
-  // 3. Contacts, restitution ramping from -1 (no impulse) to 0 (inelastic), A.2 L5.
+  // 3. Contacts, restitution ramping from -1 (no impulse) to 0 (inelastic), RESOLVECONTACTS L5.
   const int n = params_.impulse.contactIterations;
   for (int i = 1; i <= n; ++i)
     stats.events += impulsePass(world, dt, -1.0 + static_cast<double>(i) / n,

@@ -44,7 +44,7 @@ class ImpulseStepper final : public Stepper {
   /// 1. collisions: `collisionIterations` passes at positions predicted with the current
   ///    velocities, restitution world.restitution;
   /// 2. velocities: v += g Δt;
-  /// 3. contacts: `contactIterations` passes with restitution -1 + i/N (\alg{A.2 L5});
+  /// 3. contacts: `contactIterations` passes with restitution -1 + i/N (\alg{RESOLVECONTACTS L5});
   /// 4. shock propagation (when enabled);
   /// 5. positions: x += Δt v, q turned by Δt ω.
   StepStats step(World& world, double dt) override;

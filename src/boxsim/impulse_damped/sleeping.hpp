@@ -84,11 +84,11 @@ class Sleeping {
   /// The wake test for one contact of a pass, just before its COLLIDE (`call` holds COLLIDE's
   /// arguments): a sleeping body hit hard enough by an awake one gets its mass back, so it
   /// takes its share of this very impulse. Does not change the contact. A BeforeCollide hook
-  /// for both RESOLVECOLLISIONS and RESOLVECONTACTS (\alg{A.2 L1-L2}).
+  /// for both RESOLVECOLLISIONS and RESOLVECONTACTS (\alg{DAMPEDINTEGRATION L1-L2}).
   void beforeCollide(World& world, const ImpulseContact& contact, const CollideCall& call);
 
-  /// After SETGEOMETRICALLYSTABLE (\alg{A.2 L6}): each sleeping body gets back in `stable` (one
-  /// flag per body) the flag it had when it fell asleep.
+  /// After SETGEOMETRICALLYSTABLE (\alg{DAMPEDINTEGRATION L6}): each sleeping body gets back in
+  /// `stable` (one flag per body) the flag it had when it fell asleep.
   void holdStability(std::vector<char>& stable) const;
 
   /// The remembered manifolds of pairs whose bodies both stand immovable now, which the broad

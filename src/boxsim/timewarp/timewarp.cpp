@@ -196,9 +196,10 @@ class Frame {
     return both.widened(0.5 * world_.gravity.norm() * span * span + valid_[k].halfExtents.norm());
   }
 
-  /// findAllCollisions (\alg{A.1} L5): the pairs whose bounds (test states, or swept bounds)
-  /// overlap, found by the world's broad phase over those bounds (candidatePairs: sweep and
-  /// prune or all pairs, the same pairs in the same order), then each pair's collision.
+  /// SIMPLESYNCTIMEWARP L5, SAFERSYNCTIMEWARP L5: findAllCollisions, the pairs whose bounds (test
+  /// states, or swept bounds) overlap, found by the world's broad phase over those bounds
+  /// (candidatePairs: sweep and prune or all pairs, the same pairs in the same order), then each
+  /// pair's collision.
   void findAllCollisions() {
     const int n = static_cast<int>(world_.bodies.size());
     std::vector<Vec3> lo(n), hi(n);
@@ -214,52 +215,55 @@ class Frame {
       if (const auto c = collisionOf(a, b)) heap_.insert(*c);
   }
 
-  /// addCollisionsForObject (\alg{A.1} L18 / L29).
+  /// SIMPLESYNCTIMEWARP L18, SAFERSYNCTIMEWARP L29: addCollisionsForObject.
   void addCollisionsForObject(int k) {
     for (int j = 0; j < static_cast<int>(world_.bodies.size()); ++j)
       if (j != k)
         if (const auto c = collisionOf(k, j)) heap_.insert(*c);
   }
 
-  /// removeCollisionsForObject (\alg{A.1} L10 / L20).
+  /// SIMPLESYNCTIMEWARP L10, SAFERSYNCTIMEWARP L20: removeCollisionsForObject.
   void removeCollisionsForObject(int k) {
     for (auto it = heap_.begin(); it != heap_.end();)
       it = (it->a == k || it->b == k) ? heap_.erase(it) : std::next(it);
   }
 
-  /// collideTwoObjects (\alg{A.1} L13 / L24): the Newtonian impulse at the centroid of the
-  /// pair's contact `m`, applied to a and b; true when it changed their velocities.
+  /// SIMPLESYNCTIMEWARP L13, SAFERSYNCTIMEWARP L24: collideTwoObjects, the Newtonian impulse at the
+  /// centroid of the pair's contact `m`, applied to a and b; true when it changed their velocities.
   bool collideTwoObjects(RigidBody& a, RigidBody& b, const ContactManifold& m) {
     if (m.count == 0) return false;
     return applyNewtonianImpulse(a, b, m.centroid(), m.normal, world_.restitution) > 0.0;
   }
 
-  /// \alg{A.1} L8-L18 (simple) and L25-L29 (safer): resolve collision c, both bodies
+  /// SIMPLESYNCTIMEWARP L8-L18, SAFERSYNCTIMEWARP L17-L29: resolve collision c, both bodies
   /// rewound to c.time, and look for their next collisions.
   ///
-  /// DEVIATION(\alg{A.1} L11-L13): the contact is taken where the pair first touches
-  /// (c.time), the impulse is applied to the bodies where they were last apart (c.before,
-  /// within `resolution`), and that becomes their valid time, as the basic technique does.
-  /// Made valid at c.time, overlapping, the pair would look resting there and a second
-  /// collision of the same pair in the frame would be lost.
+  /// DEVIATION(SIMPLESYNCTIMEWARP L11-L13, SAFERSYNCTIMEWARP L22-L24): the contact is taken where
+  /// the pair first touches (c.time), the impulse is applied to the bodies where they were last
+  /// apart (c.before, within `resolution`), and that becomes their valid time, as the basic
+  /// technique does. Made valid at c.time, overlapping, the pair would look resting there and a
+  /// second collision of the same pair in the frame would be lost.
   void resolve(const PendingCollision& c, std::vector<TimewarpEvent>& events) {
     const ContactManifold m = impulseManifold(stateAt(c.a, c.time), stateAt(c.b, c.time));
     for (const int index : {c.a, c.b}) {
-      removeCollisionsForObject(index);                  // L10 / L20
-      valid_[index] = stateAt(index, c.before);          // L11 / L22-L23
-      validTime_[index] = std::max(validTime_[index], c.before);  // L12
+      // SIMPLESYNCTIMEWARP L10-L12, SAFERSYNCTIMEWARP L20, L22-L23.
+      removeCollisionsForObject(index);
+      valid_[index] = stateAt(index, c.before);
+      validTime_[index] = std::max(validTime_[index], c.before);
     }
-    collideTwoObjects(valid_[c.a], valid_[c.b], m);      // L13 / L24
+    // SIMPLESYNCTIMEWARP L13, SAFERSYNCTIMEWARP L24.
+    collideTwoObjects(valid_[c.a], valid_[c.b], m);
     events.push_back(TimewarpEvent{c.time, c.a, c.b});
     ++stats_.events;
     for (const int index : {c.a, c.b}) {
-      test_[index] = stateAt(index, end_);               // L16-L17 / L27-L28
+      test_[index] = stateAt(index, end_);  // SIMPLESYNCTIMEWARP L16-L17, SAFERSYNCTIMEWARP L27-L28
       ++stats_.bodyRollbacks;
     }
-    for (const int index : {c.a, c.b}) addCollisionsForObject(index);  // L18 / L29
+    // SIMPLESYNCTIMEWARP L18, SAFERSYNCTIMEWARP L29.
+    for (const int index : {c.a, c.b}) addCollisionsForObject(index);
   }
 
-  /// findNearObjects (\alg{A.1} SAFER L8): the pair and every body whose test-state bounds,
+  /// SAFERSYNCTIMEWARP L8: findNearObjects, the pair and every body whose test-state bounds,
   /// widened by nearMargin, overlap the pair's.
   std::vector<int> findNearObjects(const PendingCollision& c) const {
     const Bounds pair = boundsOf(test_[c.a]).merged(boundsOf(test_[c.b])).widened(params_.nearMargin);
@@ -280,24 +284,27 @@ class Frame {
 
 StepStats Frame::run(std::vector<TimewarpEvent>& events) {
   const int n = static_cast<int>(world_.bodies.size());
-  // L1-L4: every test state is its valid state integrated over the whole frame.
+  // SIMPLESYNCTIMEWARP L1-L4, SAFERSYNCTIMEWARP L1-L4: every test state is its valid state
+  // integrated over the whole frame.
   for (int i = 0; i < n; ++i) test_[i] = stateAt(i, end_);
-  findAllCollisions();  // L5
-  while (!heap_.empty()) {  // L6
+  findAllCollisions();      // SIMPLESYNCTIMEWARP L5, SAFERSYNCTIMEWARP L5
+  while (!heap_.empty()) {  // SIMPLESYNCTIMEWARP L6, SAFERSYNCTIMEWARP L6
     if (stats_.events >= params_.maxEventsPerStep) {
       stats_.limitReached = true;
       break;
     }
-    const PendingCollision cur = *heap_.begin();  // L7
+    // SIMPLESYNCTIMEWARP L7, SAFERSYNCTIMEWARP L7.
+    const PendingCollision cur = *heap_.begin();
     heap_.erase(heap_.begin());
     if (params_.variant == TimewarpVariant::Safer) {
-      // L8-L13: the bodies near the collision, at its time, checked for an earlier collision
-      // among themselves.
-      // DEVIATION(\alg{A.1} SAFER L11-L12, L21-L23): the pseudocode overwrites the near bodies'
-      // test states with their states at the collision time and never integrates them to the
-      // end of the frame again, which L30-L31 would then make valid; and L22-L23 reuse `index`
-      // from the loop before. The states at the collision time are temporaries here, and the
-      // near bodies keep their test states.
+      // SAFERSYNCTIMEWARP L8-L13: the bodies near the collision, at its time, checked for an
+      // earlier collision among themselves.
+      // DEVIATION(SAFERSYNCTIMEWARP L11-L12, L19, L21-L23): the pseudocode overwrites the near
+      // bodies' test states with their states at the collision time and never integrates them to
+      // the end of the frame again, which L30-L31 would then make valid; and L22-L23 reuse `index`
+      // from the loop before. The states at the collision time are temporaries here, and the near
+      // bodies keep their test states, so L19, which takes the pair out of the bodies L21-L23
+      // move, has nothing to do.
       const std::vector<int> near = findNearObjects(cur);
       std::vector<RigidBody> probe;
       for (const int k : near) probe.push_back(stateAt(k, cur.time));
@@ -307,19 +314,20 @@ StepStats Frame::run(std::vector<TimewarpEvent>& events) {
           const int a = std::min(near[p], near[q]), b = std::max(near[p], near[q]);
           if ((a == cur.a && b == cur.b) || bothImmovable(a, b)) continue;
           if (depth(probe[p], probe[q]) <= params_.depthTolerance) continue;
-          const auto c = bisect(a, b, cur.time);  // findCollisionsForGroup, L13
+          const auto c = bisect(a, b, cur.time);  // SAFERSYNCTIMEWARP L13: findCollisionsForGroup
           if (c && c->time < cur.time && (!earliest || *c < *earliest)) earliest = c;
         }
       if (earliest) {
-        // L14-L15: the earlier collision goes into the heap and is resolved first.
-        // DEVIATION(\alg{A.1} SAFER L15): the current collision goes back in too; dropped, it
+        // SAFERSYNCTIMEWARP L14-L15: the earlier collision goes into the heap and is resolved
+        // first.
+        // DEVIATION(SAFERSYNCTIMEWARP L15): the current collision goes back in too; dropped, it
         // would be lost whenever the earlier one involves other bodies.
         heap_.insert(*earliest);
         heap_.insert(cur);
         continue;
       }
     }
-    resolve(cur, events);  // simple L8-L18, safer L17-L29
+    resolve(cur, events);  // SIMPLESYNCTIMEWARP L8-L18, SAFERSYNCTIMEWARP L16-L29
   }
   // Past the event limit, every body stops at the last instant found apart before the earliest
   // collision left in the heap (or at its valid time, if later), and the rest of the frame is
@@ -334,7 +342,8 @@ StepStats Frame::run(std::vector<TimewarpEvent>& events) {
     for (int k = 0; k < n; ++k)
       if (!valid_[k].immovable) test_[k] = stateAt(k, std::max(validTime_[k], stop));
   }
-  // L19-L21 / L30-L32: every body's test state becomes valid at the end of the frame.
+  // SIMPLESYNCTIMEWARP L19-L21, SAFERSYNCTIMEWARP L30-L32: every body's test state becomes valid at
+  // the end of the frame.
   for (int i = 0; i < n; ++i) {
     world_.bodies[i].s = test_[i].s;
     world_.bodies[i].updateDerived();
@@ -377,7 +386,8 @@ StepStats TimewarpStepper::step(World& world, double dt) {
   Frame frame(world, dt, params_);
   StepStats stats = frame.run(events_);
   if (params_.fixInterpenetration)
-    fixContactConstraints(world, params_.contactMargin, params_.fix, dt);  // L22 / L33
+    // SIMPLESYNCTIMEWARP L22, SAFERSYNCTIMEWARP L33: fixInterpenetration.
+    fixContactConstraints(world, params_.contactMargin, params_.fix, dt);
   stats.contacts = static_cast<int>(findContacts(world, params_.contactMargin).size());
   return stats;
 }

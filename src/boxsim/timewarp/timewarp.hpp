@@ -21,8 +21,8 @@ namespace boxsim {
 
 /// Which procedure of \alg{A.1} a TimewarpStepper runs.
 enum class TimewarpVariant {
-  Simple,  ///< SIMPLESYNCTIMEWARP, \alg{A.1} lines 1-23
-  Safer,   ///< SAFERSYNCTIMEWARP, \alg{A.1} lines 1-34
+  Simple,  ///< \alg{SIMPLESYNCTIMEWARP}
+  Safer,   ///< \alg{SAFERSYNCTIMEWARP}
   Swept,   ///< SIMPLESYNCTIMEWARP with swept-volume pair finding (\thesis{§5.1})
 };
 
@@ -55,8 +55,9 @@ struct TimewarpParams {
   /// Euler; the default is semi-implicit Euler, as the basic technique's, for the reason
   /// BasicCollidingParams gives (forward Euler adds energy to every bounce).
   Integrator integrator = Integrator::SemiImplicitEuler;
-  /// FIXINTERPENETRATION at the end of the frame (\alg{A.1} L22 / L33), with the slop and
-  /// nudge of \alg{A.2}'s FIXCONTACTCONSTRAINTS, which implements \thesis{§4.4}.
+  /// FIXINTERPENETRATION at the end of the frame (\alg{SIMPLESYNCTIMEWARP L22},
+  /// \alg{SAFERSYNCTIMEWARP L33}), with the slop and nudge of \alg{A.2}'s FIXCONTACTCONSTRAINTS,
+  /// which implements \thesis{§4.4}.
   bool fixInterpenetration = true;
   /// Slop and nudge of FIXINTERPENETRATION, in units of the upper body's smallest half extent.
   FixContactParams fix;
@@ -81,8 +82,8 @@ class TimewarpStepper final : public Stepper {
   std::map<std::string, std::string> parameters() const override;
   /// At most TimewarpParams::maxEventsPerStep collisions a frame, in words.
   std::string workLimit() const override;
-  /// One frame of dt s: \alg{A.1} SIMPLESYNCTIMEWARP(t, dt, resolution) or
-  /// SAFERSYNCTIMEWARP, or the swept variant. StepStats counts events, bisection steps,
+  /// One frame of dt s: \alg{SIMPLESYNCTIMEWARP}(t, dt, resolution) or
+  /// \alg{SAFERSYNCTIMEWARP}, or the swept variant. StepStats counts events, bisection steps,
   /// body integrations and body roll-backs.
   StepStats step(World& world, double dt) override;
   /// The collisions of the last frame, in the order they were resolved.
