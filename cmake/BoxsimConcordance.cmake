@@ -29,13 +29,6 @@ if(NOT BOXSIM_SOURCE_DIR)
   message(FATAL_ERROR "boxsim concordance: BOXSIM_SOURCE_DIR is not set")
 endif()
 
-# Files still carrying tags in the old form `A.2 Ln`, tolerated until their rework retags them.
-# Their old tags count for nothing; the lines they implement are covered elsewhere too.
-set(concordanceOldFormFiles
-    src/boxsim/impulse_damped/contact_gathering.hpp
-    src/boxsim/impulse_damped/contact_gathering.cpp
-    src/boxsim/impulse_damped/step_candidates.cpp)
-
 # Generated pages, not read: they are written by a program and stamped with the commit that ran
 # it, and a hand edit would misstate what that run wrote. docs/benchmarks.md (boxsim_peers,
 # bench/peers) still names the profile's stages in the old form ("collision passes (A.2 L1)");
@@ -187,7 +180,6 @@ foreach(file IN LISTS codeFiles pageFiles)
   if(NOT content MATCHES "(${routineAlternatives}) L[0-9]|\\\\alg{|A\\.[12] L[0-9]|[A-Z][A-Z][A-Z][A-Z][A-Z]+ L[0-9]")
     continue()
   endif()
-  list(FIND concordanceOldFormFiles "${file}" oldFormTolerated)
   set(isCode FALSE)
   set(isSource FALSE)
   if(file MATCHES "\\.(hpp|cpp)$")
@@ -212,7 +204,7 @@ foreach(file IN LISTS codeFiles pageFiles)
       # Markdown: code spans and fenced blocks show the forms instead of using them.
       boxsimMarkdownText("${line}" inFence line)
       string(REPLACE "<bs><bs>" "<escaped>" line "${line}")
-      if(line MATCHES "A\\.[12] L[0-9]" AND oldFormTolerated EQUAL -1)
+      if(line MATCHES "A\\.[12] L[0-9]")
         list(APPEND problems "${file}:${lineNumber}: old tag form \"A.x Ln\": name the routine")
       endif()
       if(line MATCHES "<bs>alg{")
@@ -272,9 +264,7 @@ foreach(file IN LISTS codeFiles pageFiles)
       continue()
     endif()
     if(comment MATCHES "A\\.[12] L[0-9]")
-      if(oldFormTolerated EQUAL -1)
-        list(APPEND problems "${file}:${lineNumber}: old tag form \"A.x Ln\": name the routine")
-      endif()
+      list(APPEND problems "${file}:${lineNumber}: old tag form \"A.x Ln\": name the routine")
       continue()
     endif()
     string(REGEX MATCHALL "[A-Z][A-Z_]+ L[0-9]+" named "${comment}")
