@@ -9,7 +9,6 @@
 #include <set>
 #include <sstream>
 
-#include "boxsim/basic_colliding/time_of_impact.hpp"
 #include "boxsim/collision/broad_phase.hpp"
 #include "boxsim/collision/separating_axis.hpp"
 #include "boxsim/core/math.hpp"
@@ -363,7 +362,7 @@ void readBuilder(const Node& node, Scene& scene, std::set<std::string>& names) {
 void checkNoOverlap(const Scene& scene) {
   // Boxes may touch at the start (a stacked tower overlaps by rounding) but not overlap by
   // more than the techniques' own intersection threshold.
-  const double tolerance = TimeOfImpactParams{}.depthTolerance;
+  const double tolerance = kIntersectionDepthTolerance;
   // A body waiting for its launch is immovable until then, and pairs of two immovable bodies
   // are never candidates; so check a copy with every body launched, or a body waiting inside
   // the ground or a wall would first collide when its launch starts inside it.
