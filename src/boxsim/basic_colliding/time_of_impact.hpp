@@ -9,6 +9,7 @@
 
 #include "boxsim/core/integrator.hpp"
 #include "boxsim/collision/broad_phase.hpp"
+#include "boxsim/collision/separating_axis.hpp"
 #include "boxsim/core/world.hpp"
 
 namespace boxsim {
@@ -19,10 +20,9 @@ struct TimeOfImpactParams {
   /// this. 1e-5 s is 1/1667 of a 60 Hz frame, about 11 halvings; a body at 10 m/s then stops
   /// within 0.1 mm of its contact.
   double timeTolerance = 1e-5;
-  /// m, >= 0: a pair "intersects" when its separating-axis depth exceeds this. Boxes built
-  /// touching (a tower) overlap by rounding, ~1e-17 m for unit boxes; 1 nm ignores that and
-  /// nothing else. Scene loading rejects start overlaps by the same measure.
-  double depthTolerance = 1e-9;
+  /// m, >= 0: a pair "intersects" when its separating-axis depth exceeds this
+  /// (kIntersectionDepthTolerance, which scene loading also rejects start overlaps by).
+  double depthTolerance = kIntersectionDepthTolerance;
 };
 
 /// The bracket a search ends with.

@@ -190,39 +190,50 @@ std::array<int, 4> reduceToFour(const std::array<FacePoint, 8>& pts, int count, 
   return keep;
 }
 
-/// Face contact: clip the incident face of one box against the reference face of the other.
-/// Fills the points, count and depth of `m`, whose other fields the caller has set.
-void faceContact(const Obb& a, const Obb& b, const SeparatingAxisResult& sat, double margin,
-                 ContactManifold& m, std::vector<ContactPoint>* area = nullptr) {
-  const bool refIsA = sat.kind == AxisKind::FaceA;
-  const Obb& ref = refIsA ? a : b;
-  const Obb& inc = refIsA ? b : a;
-  const int refAxis = refIsA ? sat.indexA : sat.indexB;
+/// The two faces of a face contact: the reference face, of the box whose axis was chosen,
+/// facing the other box, and the incident face, the other box's face most anti-parallel to it.
+struct FacePair {
+  bool refIsA;   ///< the reference box is A (the axis is a face axis of A)
+  int refAxis;   ///< axis of the reference face in its box, 0..2
+  bool refPlus;  ///< the reference face lies on the + side of refAxis
+  Vec3 nRef;     ///< unit, the reference face's outward normal, towards the incident box
+  int incAxis;   ///< axis of the incident face in its box, 0..2
+  bool incPlus;  ///< the incident face lies on the + side of incAxis
+};
+
+/// The reference and incident faces for the face axis `sat` chose.
+FacePair chooseFaces(const Obb& a, const Obb& b, const SeparatingAxisResult& sat) {
+  FacePair f;
+  f.refIsA = sat.kind == AxisKind::FaceA;
+  const Obb& ref = f.refIsA ? a : b;
+  const Obb& inc = f.refIsA ? b : a;
+  f.refAxis = f.refIsA ? sat.indexA : sat.indexB;
   // The reference face's outward normal, towards the incident box (sat.normal is A to B).
-  const Vec3 nRef = refIsA ? sat.normal : Vec3(-sat.normal);
-  const bool refPlus = ref.axes.col(refAxis).dot(nRef) > 0.0;
-  const int refFace = 2 * refAxis + (refPlus ? 1 : 0);
+  f.nRef = f.refIsA ? sat.normal : Vec3(-sat.normal);
+  f.refPlus = ref.axes.col(f.refAxis).dot(f.nRef) > 0.0;
 
   // Incident face: the other box's face whose outward normal is most anti-parallel to nRef.
-  const std::array<double, 3> incDot = {inc.axes.col(0).dot(nRef), inc.axes.col(1).dot(nRef),
-                                        inc.axes.col(2).dot(nRef)};
-  int incAxis = 0;
+  const std::array<double, 3> incDot = {inc.axes.col(0).dot(f.nRef), inc.axes.col(1).dot(f.nRef),
+                                        inc.axes.col(2).dot(f.nRef)};
+  f.incAxis = 0;
   for (int k = 1; k < 3; ++k)
-    if (std::abs(incDot[k]) > std::abs(incDot[incAxis])) incAxis = k;
-  const bool incPlus = incDot[incAxis] < 0.0;
-  const int incFace = 2 * incAxis + (incPlus ? 1 : 0);
+    if (std::abs(incDot[k]) > std::abs(incDot[f.incAxis])) f.incAxis = k;
+  f.incPlus = incDot[f.incAxis] < 0.0;
+  return f;
+}
 
-  // The incident quad, vertex k between edges k-1 and k (file comment diagram).
+/// Centre (m, world) of the face of `box` on the + (plus) or - side of axis m.
+Vec3 faceCentre(const Obb& box, int m, bool plus) {
+  return box.center + (plus ? 1.0 : -1.0) * box.halfExtents[m] * box.axes.col(m);
+}
+
+/// The incident face of `inc` (axis incAxis, + side when incPlus) as a quad in world
+/// coordinates (m), vertex k between edges k-1 and k (file comment diagram).
+void incidentQuad(const Obb& inc, int incAxis, bool incPlus, ClipPolygon& quad) {
   static constexpr std::array<double, 4> kSignU = {1.0, -1.0, -1.0, 1.0};
   static constexpr std::array<double, 4> kSignV = {1.0, 1.0, -1.0, -1.0};
   const int iu = (incAxis + 1) % 3, iv = (incAxis + 2) % 3;
-  const Vec3 incCenter = inc.center + (incPlus ? 1.0 : -1.0) * inc.halfExtents[incAxis] *
-                                          inc.axes.col(incAxis);
-  // Two buffers the clip steps pass the polygon between, buffers[current] holding it, so no
-  // step copies the polygon by value.
-  std::array<ClipPolygon, 2> buffers;
-  int current = 0;
-  ClipPolygon& quad = buffers[0];
+  const Vec3 incCenter = faceCentre(inc, incAxis, incPlus);
   quad.count = 4;
   for (int k = 0; k < 4; ++k) {
     quad.v[k].p = incCenter + kSignU[k] * inc.halfExtents[iu] * inc.axes.col(iu) +
@@ -230,18 +241,21 @@ void faceContact(const Obb& a, const Obb& b, const SeparatingAxisResult& sat, do
     quad.v[k].inLabel = (k + 3) % 4;
     quad.v[k].outLabel = k;
   }
+}
 
-  // Clip against the reference face's side planes, numbered like its edges: 0 +v, 1 -u,
-  // 2 -v, 3 +u.
+/// Clips the polygon in buffers[0] against the reference face's side planes, numbered like its
+/// edges: 0 +v, 1 -u, 2 -v, 3 +u (labels 4..7; file comment diagram). The face is that of
+/// `ref` on side refPlus of refAxis, centred at refCenter (m); vertices within `tie` (m) of a
+/// plane count as on it. The two buffers pass the polygon between the clip steps, so no step
+/// copies it by value; returns the one holding the result.
+const ClipPolygon& clipToSidePlanes(const Obb& ref, int refAxis, const Vec3& refCenter, double tie,
+                                    std::array<ClipPolygon, 2>& buffers) {
   const int ru = (refAxis + 1) % 3, rv = (refAxis + 2) % 3;
-  const Vec3 refCenter = ref.center + (refPlus ? 1.0 : -1.0) * ref.halfExtents[refAxis] *
-                                          ref.axes.col(refAxis);
   const Vec3 u = ref.axes.col(ru);
   const Vec3 v = ref.axes.col(rv);
   const double hu = ref.halfExtents[ru];
   const double hv = ref.halfExtents[rv];
-  // Rounding-sized distances from a side plane, and depths, count as ties (kDepthTieFraction).
-  const double tie = kDepthTieFraction * std::max(hu, hv);
+  int current = 0;
   const auto clip = [&](const Vec3& n, double offset, int planeLabel) {
     if (clipToPlane(buffers[current], buffers[1 - current], n, offset, planeLabel, tie))
       current = 1 - current;
@@ -250,13 +264,14 @@ void faceContact(const Obb& a, const Obb& b, const SeparatingAxisResult& sat, do
   clip(Vec3(-u), -u.dot(refCenter) + hu, 5);
   clip(Vec3(-v), -v.dot(refCenter) + hv, 6);
   clip(u, u.dot(refCenter) + hu, 7);
-  const ClipPolygon& poly = buffers[current];
+  return buffers[current];
+}
 
-  // Keep the points below the reference face, placed midway between the two surfaces.
-  const std::uint32_t faceBits = (static_cast<std::uint32_t>(incFace) << 6) |
-                                 (static_cast<std::uint32_t>(refFace) << 9) |
-                                 ((refIsA ? 0u : 1u) << 12);
-  std::array<FacePoint, 8> kept;
+/// The vertices of `poly` below the reference face (through refCenter, outward normal nRef;
+/// depth > -margin, m), each placed midway between the two surfaces, with feature id
+/// faceBits | its two lines. Writes them to `kept` in polygon order and returns their count.
+int pointsBelow(const ClipPolygon& poly, const Vec3& nRef, const Vec3& refCenter, double margin,
+                std::uint32_t faceBits, std::array<FacePoint, 8>& kept) {
   int count = 0;
   for (int k = 0; k < poly.count; ++k) {
     const double depth = nRef.dot(refCenter - poly.v[k].p);
@@ -267,13 +282,13 @@ void faceContact(const Obb& a, const Obb& b, const SeparatingAxisResult& sat, do
     c.featureId = faceBits | static_cast<std::uint32_t>(poly.v[k].inLabel) |
                   (static_cast<std::uint32_t>(poly.v[k].outLabel) << 3);
   }
+  return count;
+}
 
-  if (area) {
-    // The whole contact area (§3.2), before the reduction to four.
-    area->clear();
-    for (int k = 0; k < count; ++k) area->push_back({kept[k].position, kept[k].depth, kept[k].featureId});
-    return;
-  }
+/// Writes `count` kept points to `m`, reduced to four (reduceToFour about nRef, depths within
+/// `tie` m equal) when there are more, and sets m.count and m.depth, the deepest point's.
+void storeFacePoints(const std::array<FacePoint, 8>& kept, int count, const Vec3& nRef,
+                     double tie, ContactManifold& m) {
   const auto put = [&m](int slot, const FacePoint& c) {
     m.points[slot].position = c.position;
     m.points[slot].depth = c.depth;
@@ -291,6 +306,41 @@ void faceContact(const Obb& a, const Obb& b, const SeparatingAxisResult& sat, do
     m.depth = m.points[0].depth;
     for (int k = 1; k < count; ++k) m.depth = std::max(m.depth, m.points[k].depth);
   }
+}
+
+/// Face contact: clip the incident face of one box against the reference face of the other.
+/// Fills the points, count and depth of `m`, whose other fields the caller has set; with `area`,
+/// fills that with every point before the reduction to four instead.
+void faceContact(const Obb& a, const Obb& b, const SeparatingAxisResult& sat, double margin,
+                 ContactManifold& m, std::vector<ContactPoint>* area = nullptr) {
+  const FacePair faces = chooseFaces(a, b, sat);
+  const Obb& ref = faces.refIsA ? a : b;
+  const Obb& inc = faces.refIsA ? b : a;
+  const int refFace = 2 * faces.refAxis + (faces.refPlus ? 1 : 0);
+  const int incFace = 2 * faces.incAxis + (faces.incPlus ? 1 : 0);
+
+  std::array<ClipPolygon, 2> buffers;
+  incidentQuad(inc, faces.incAxis, faces.incPlus, buffers[0]);
+  const Vec3 refCenter = faceCentre(ref, faces.refAxis, faces.refPlus);
+  // Rounding-sized distances from a side plane, and depths, count as ties (kDepthTieFraction).
+  const double tie = kDepthTieFraction * std::max(ref.halfExtents[(faces.refAxis + 1) % 3],
+                                                  ref.halfExtents[(faces.refAxis + 2) % 3]);
+  const ClipPolygon& poly = clipToSidePlanes(ref, faces.refAxis, refCenter, tie, buffers);
+
+  // Keep the points below the reference face, placed midway between the two surfaces.
+  const std::uint32_t faceBits = (static_cast<std::uint32_t>(incFace) << 6) |
+                                 (static_cast<std::uint32_t>(refFace) << 9) |
+                                 ((faces.refIsA ? 0u : 1u) << 12);
+  std::array<FacePoint, 8> kept;
+  const int count = pointsBelow(poly, faces.nRef, refCenter, margin, faceBits, kept);
+
+  if (area) {
+    // The whole contact area (§3.2), before the reduction to four.
+    area->clear();
+    for (int k = 0; k < count; ++k) area->push_back({kept[k].position, kept[k].depth, kept[k].featureId});
+    return;
+  }
+  storeFacePoints(kept, count, faces.nRef, tie, m);
 }
 
 /// The edge of `box` along axis d farthest along direction n (its support edge), as centre

@@ -25,6 +25,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace boxsim {
 namespace {
@@ -138,12 +139,157 @@ AxisCandidate faceCandidate(const Obb& a, const Obb& b, int k, double depth, dou
   return f;
 }
 
+/// The face tie width, m: faceTieTolerance times the boxes' size (the sum of their largest half
+/// extents). Face depths closer than this count as tied (SeparatingAxisParams).
+double faceTieWidth(const Obb& a, const Obb& b, const SeparatingAxisParams& params) {
+  return params.faceTieTolerance * (a.halfExtents.maxCoeff() + b.halfExtents.maxCoeff());
+}
+
+/// Depth (m) along face axis i of A, Eberly's row L = A_i: rA + rB - |L . D| with rA = e^A_i
+/// and rB = sum_j e^B_j |C_ij|, where absC(i, j) = |a_i . b_j| and dist = a_i . D (m). The
+/// full test and its one-axis shortcut (separatedBeyond) both use it, so they agree bit for bit.
+template <class AbsC>
+double faceDepthA(const Obb& a, const Obb& b, const AbsC& absC, int i, double dist) {
+  const Vec3& ea = a.halfExtents;
+  const Vec3& eb = b.halfExtents;
+  const double rA = ea[i];
+  const double rB = eb[0] * absC(i, 0) + eb[1] * absC(i, 1) + eb[2] * absC(i, 2);
+  return (rA + rB) - std::abs(dist);
+}
+
+/// Depth (m) along face axis j of B, Eberly's row L = B_j: rA = sum_i e^A_i |C_ij|, rB = e^B_j,
+/// dist = b_j . D (m). As faceDepthA.
+template <class AbsC>
+double faceDepthB(const Obb& a, const Obb& b, const AbsC& absC, int j, double dist) {
+  const Vec3& ea = a.halfExtents;
+  const Vec3& eb = b.halfExtents;
+  const double rA = ea[0] * absC(0, j) + ea[1] * absC(1, j) + ea[2] * absC(2, j);
+  const double rB = eb[j];
+  return (rA + rB) - std::abs(dist);
+}
+
+/// An edge-edge axis L = a_i x b_j before it is divided by |L| (Eberly's rows L = A_i x B_j).
+struct EdgeOverlap {
+  Vec3 L;          ///< a_i x b_j in world space; |L| is the sine of the angle between the edges
+  double dist;     ///< L . D, m
+  double overlap;  ///< (rA + rB) - |L . D|, m times |L|: Eberly's unnormalised separation
+};
+
+/// Edge-edge axis L = a_i x b_j with its overlap, absCEdge(r, c) being |C_rc| + absCEpsilon and
+/// D = centre of B - centre of A (m). Shared by the full test and separatedBeyond.
+template <class AbsCEdge>
+EdgeOverlap edgeOverlap(const Obb& a, const Obb& b, const Vec3& D, const AbsCEdge& absCEdge,
+                        int i, int j) {
+  const Vec3& ea = a.halfExtents;
+  const Vec3& eb = b.halfExtents;
+  const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+  const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+  EdgeOverlap e;
+  // The cross product in world space: the swapped call computes b_j x a_i, the exact
+  // negation, so |L| and |L . D| agree bit for bit.
+  e.L = a.axes.col(i).cross(b.axes.col(j));
+  const double rA = ea[i1] * absCEdge(i2, j) + ea[i2] * absCEdge(i1, j);
+  const double rB = eb[j1] * absCEdge(i, j2) + eb[j2] * absCEdge(i, j1);
+  e.dist = e.L.dot(D);
+  // Eberly's unnormalised separation; dividing by |L| turns it into metres.
+  e.overlap = (rA + rB) - std::abs(e.dist);
+  return e;
+}
+
+/// The depths of the six face axes (Eberly's table of the 15 tests, rows L = A_i, L = B_j).
+struct FaceDepths {
+  std::array<double, 6> depth;  ///< m; 0..2 face axes of A, 3..5 face axes of B
+  std::array<double, 6> dist;   ///< m, axis . D, whose sign orients the face normal
+  double least;                 ///< m, the least of the six depths
+};
+
+/// The six face depths, absC being |C| and D = centre of B - centre of A (m). Depths only: the
+/// normal and the tie-break data are formed by bestFace for the tied faces alone.
+FaceDepths faceDepths(const Obb& a, const Obb& b, const Vec3& D, const Mat3& absC) {
+  FaceDepths f;
+  for (int i = 0; i < 3; ++i) {
+    f.dist[i] = a.axes.col(i).dot(D);
+    f.depth[i] = faceDepthA(a, b, absC, i, f.dist[i]);
+  }
+  for (int j = 0; j < 3; ++j) {
+    f.dist[3 + j] = b.axes.col(j).dot(D);
+    f.depth[3 + j] = faceDepthB(a, b, absC, j, f.dist[3 + j]);
+  }
+  f.least = f.depth[0];
+  for (const double depth : f.depth) f.least = std::min(f.least, depth);
+  return f;
+}
+
+/// The best face: least depth, near ties (within tieWidth, m) to the larger face (betterFace).
+/// Only the tied faces get a candidate (normal, area, height), compared in index order.
+/// (No face is tied only if the depths are NaN; the default candidate returned is then
+/// meaningless, as is the answer anyway.)
+AxisCandidate bestFace(const Obb& a, const Obb& b, const FaceDepths& faces, double tieWidth) {
+  AxisCandidate face;
+  bool haveFace = false;
+  const int order = centreOrder(a, b);
+  for (int k = 0; k < 6; ++k) {
+    // A tie never crosses depth 0, so "intersecting" and "depth > 0" keep meaning the same.
+    const bool tied = faces.depth[k] <= faces.least + tieWidth &&
+                      (faces.depth[k] > 0.0) == (faces.least > 0.0);
+    if (!tied) continue;
+    const AxisCandidate f = faceCandidate(a, b, k, faces.depth[k], faces.dist[k], order);
+    if (!haveFace || betterFace(f, face)) face = f;
+    haveFace = true;
+  }
+  return face;
+}
+
+/// The best edge-edge axis (Eberly's rows L = A_i x B_j): least depth, then the unsigned axis,
+/// then the edge indices (betterEdge). absCEdge is |C| + absCEpsilon, D = centre of B - centre
+/// of A (m). Axes shorter than parallelCutoff are left out, and so are axes that provably lose
+/// to the best face, of depth faceDepth (m), under the bar edgeBar (m; see "Face or edge" in
+/// separatingAxisTest). Empty when no axis is left.
+std::optional<EdgeAxis> bestEdge(const Obb& a, const Obb& b, const Vec3& D, const Mat3& absCEdge,
+                                 double faceDepth, double edgeBar, double parallelCutoff) {
+  std::optional<EdgeAxis> edge;
+  // Unrolled, so every index below is a constant: the loop bookkeeping and the "% 3" cost
+  // more than the arithmetic of an axis that is not divided out.
+#pragma GCC unroll 3
+  for (int i = 0; i < 3; ++i) {
+#pragma GCC unroll 3
+    for (int j = 0; j < 3; ++j) {
+      const EdgeOverlap o = edgeOverlap(a, b, D, absCEdge, i, j);
+      const double lengthSquared = o.L.squaredNorm();  // |L| = sqrt of this, as L.norm() does
+
+      // An axis that provably loses to the face is not divided out (no root, no division).
+      // lengthSquared <= 1 makes |L| <= 1, and then, overlap being a positive double and
+      // rounding monotone, the rounded depth overlap / |L| is >= overlap. So overlap > 0 and
+      // overlap at least both bars mean a positive depth, which cannot make "intersecting"
+      // false, and one that neither comparison under "Face or edge" prefers to the face.
+      // Leaving the axis out changes nothing: had it been the best edge, the best of the rest
+      // is no better and loses too. (Axes below parallelCutoff are left out anyway.) The first
+      // axis to pass the cutoff is always evaluated, so the running best starts from the same
+      // axis as in the plain loop, which keeps the answer the same even for NaN depths, which
+      // win no comparison.
+      if (edge && lengthSquared <= 1.0 && o.overlap > 0.0 && o.overlap >= edgeBar &&
+          o.overlap >= faceDepth)
+        continue;
+      const double length = std::sqrt(lengthSquared);
+      // Near-parallel edges: L is mostly rounding error and the face axes already decide.
+      if (length < parallelCutoff) continue;
+      EdgeAxis e;
+      e.depth = o.overlap / length;
+      e.L = o.L;
+      e.length = length;
+      e.dist = o.dist;
+      e.indexA = i;
+      e.indexB = j;
+      if (!edge || betterEdge(e, *edge)) edge = e;
+    }
+  }
+  return edge;
+}
+
 }  // namespace
 
 SeparatingAxisResult separatingAxisTest(const Obb& a, const Obb& b,
                                         const SeparatingAxisParams& params) {
-  const Vec3& ea = a.halfExtents;
-  const Vec3& eb = b.halfExtents;
   const Vec3 D = b.center - a.center;
 
   // C_ij = a_i . b_j. Written as dot products so that the swapped call, which computes
@@ -156,95 +302,20 @@ SeparatingAxisResult separatingAxisTest(const Obb& a, const Obb& b,
   // touching faces report depth 0, not -1e-12.
   const Mat3 absCEdge = absC.array() + params.absCEpsilon;
 
-  // --- Face axes of A and of B (Eberly's table of the 15 tests, rows L = A_i, L = B_j) ---
-  // Depths only: the normal and the tie-break data are formed below for the tied faces alone.
-  std::array<double, 6> faceDepth;
-  std::array<double, 6> faceDist;  // axis . D, whose sign orients the face normal
-  for (int i = 0; i < 3; ++i) {
-    const double rA = ea[i];
-    const double rB = eb[0] * absC(i, 0) + eb[1] * absC(i, 1) + eb[2] * absC(i, 2);
-    faceDist[i] = a.axes.col(i).dot(D);
-    faceDepth[i] = (rA + rB) - std::abs(faceDist[i]);
-  }
-  for (int j = 0; j < 3; ++j) {
-    const double rA = ea[0] * absC(0, j) + ea[1] * absC(1, j) + ea[2] * absC(2, j);
-    const double rB = eb[j];
-    faceDist[3 + j] = b.axes.col(j).dot(D);
-    faceDepth[3 + j] = (rA + rB) - std::abs(faceDist[3 + j]);
-  }
-
-  // --- The best face: least depth, near ties to the larger face ---
-  double faceMin = faceDepth[0];
-  for (const double depth : faceDepth) faceMin = std::min(faceMin, depth);
-  const double tieWidth = params.faceTieTolerance * (ea.maxCoeff() + eb.maxCoeff());
-  // Only the tied faces get a candidate (normal, area, height), compared in index order.
-  // (No face is tied only if the depths are NaN; the answer is then meaningless anyway.)
-  AxisCandidate face;
-  bool haveFace = false;
-  const int order = centreOrder(a, b);
-  for (int k = 0; k < 6; ++k) {
-    // A tie never crosses depth 0, so "intersecting" and "depth > 0" keep meaning the same.
-    const bool tied = faceDepth[k] <= faceMin + tieWidth && (faceDepth[k] > 0.0) == (faceMin > 0.0);
-    if (!tied) continue;
-    const AxisCandidate f = faceCandidate(a, b, k, faceDepth[k], faceDist[k], order);
-    if (!haveFace || betterFace(f, face)) face = f;
-    haveFace = true;
-  }
+  // --- Face axes of A and of B: the best face, least depth, near ties to the larger face ---
+  const FaceDepths faces = faceDepths(a, b, D, absC);
+  const double tieWidth = faceTieWidth(a, b, params);
+  const AxisCandidate face = bestFace(a, b, faces, tieWidth);
   // The two bars an edge axis must get under to be chosen instead of the face (see "Face or
   // edge" below): edgeBar when the boxes overlap, face.depth when they do not.
   const double edgeBar = face.depth * (1.0 - params.edgeBias);
 
-  // --- Edge-edge axes L = a_i x b_j (the same table, rows L = A_i x B_j) ---
-  bool haveEdge = false;
-  EdgeAxis edge;
-  // Unrolled, so every index below is a constant: the loop bookkeeping and the "% 3" cost
-  // more than the arithmetic of an axis that is not divided out.
-#pragma GCC unroll 3
-  for (int i = 0; i < 3; ++i) {
-    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
-#pragma GCC unroll 3
-    for (int j = 0; j < 3; ++j) {
-      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-      // The cross product in world space: the swapped call computes b_j x a_i, the exact
-      // negation, so |L| and |L . D| agree bit for bit.
-      const Vec3 L = a.axes.col(i).cross(b.axes.col(j));
-      const double rA = ea[i1] * absCEdge(i2, j) + ea[i2] * absCEdge(i1, j);
-      const double rB = eb[j1] * absCEdge(i, j2) + eb[j2] * absCEdge(i, j1);
-      const double dist = L.dot(D);
-      // Eberly's unnormalised separation; dividing by |L| turns it into metres.
-      const double overlap = (rA + rB) - std::abs(dist);
-      const double lengthSquared = L.squaredNorm();  // |L| = sqrt of this, as L.norm() does
-
-      // An axis that provably loses to the face is not divided out (no root, no division).
-      // lengthSquared <= 1 makes |L| <= 1, and then, overlap being a positive double and
-      // rounding monotone, the rounded depth overlap / |L| is >= overlap. So overlap > 0 and
-      // overlap at least both bars mean a positive depth, which cannot make "intersecting"
-      // false, and one that neither comparison under "Face or edge" prefers to the face.
-      // Leaving the axis out changes nothing: had it been the best edge, the best of the rest
-      // is no better and loses too. (Axes below parallelCutoff are left out anyway.) The first
-      // axis to pass the cutoff is always evaluated, so the running best starts from the same
-      // axis as in the plain loop, which keeps the answer the same even for NaN depths, which
-      // win no comparison.
-      if (haveEdge && lengthSquared <= 1.0 && overlap > 0.0 && overlap >= edgeBar &&
-          overlap >= face.depth)
-        continue;
-      const double length = std::sqrt(lengthSquared);
-      // Near-parallel edges: L is mostly rounding error and the face axes already decide.
-      if (length < params.parallelCutoff) continue;
-      EdgeAxis e;
-      e.depth = overlap / length;
-      e.L = L;
-      e.length = length;
-      e.dist = dist;
-      e.indexA = i;
-      e.indexB = j;
-      if (!haveEdge || betterEdge(e, edge)) edge = e;
-      haveEdge = true;
-    }
-  }
+  // --- Edge-edge axes L = a_i x b_j ---
+  const std::optional<EdgeAxis> edge =
+      bestEdge(a, b, D, absCEdge, face.depth, edgeBar, params.parallelCutoff);
 
   // --- Face or edge ---
-  const double leastDepth = haveEdge ? std::min(faceMin, edge.depth) : faceMin;
+  const double leastDepth = edge ? std::min(faces.least, edge->depth) : faces.least;
   const bool intersecting = leastDepth > 0.0;
   // Overlapping: an edge axis must beat the face by the relative bias, so flush faces, whose
   // edge axes coincide with the face normal, give face contacts. Separated: the largest gap
@@ -254,18 +325,18 @@ SeparatingAxisResult separatingAxisTest(const Obb& a, const Obb& b,
   // boxes whose every face axis overlaps (a box beside the edge of a wide ground, apart along
   // an edge axis by less than the tie width) report that edge axis: the face's depth > 0 would
   // contradict intersecting = false.
-  const bool useEdge = haveEdge && (intersecting ? edge.depth < edgeBar - tieWidth
-                                                : edge.depth < face.depth - tieWidth ||
-                                                      face.depth > 0.0);
+  const bool useEdge = edge && (intersecting ? edge->depth < edgeBar - tieWidth
+                                             : edge->depth < face.depth - tieWidth ||
+                                                   face.depth > 0.0);
 
   SeparatingAxisResult result;
   result.intersecting = intersecting;
   if (useEdge) {
-    result.depth = edge.depth;
-    result.normal = edge.normal();
+    result.depth = edge->depth;
+    result.normal = edge->normal();
     result.kind = AxisKind::EdgeEdge;
-    result.indexA = edge.indexA;
-    result.indexB = edge.indexB;
+    result.indexA = edge->indexA;
+    result.indexB = edge->indexB;
   } else {
     result.depth = face.depth;
     result.normal = face.normal;
@@ -278,33 +349,25 @@ SeparatingAxisResult separatingAxisTest(const Obb& a, const Obb& b,
 
 bool separatedBeyond(const Obb& a, const Obb& b, const SeparatingAxisResult& axis, double margin,
                      const SeparatingAxisParams& params) {
-  const Vec3& ea = a.halfExtents;
-  const Vec3& eb = b.halfExtents;
   const Vec3 D = b.center - a.center;
   // C and its rows as separatingAxisTest forms them, entry for entry.
   const auto absC = [&](int i, int j) { return std::abs(a.axes.col(i).dot(b.axes.col(j))); };
   double depth = 0.0;
   if (axis.kind == AxisKind::FaceA) {
     const int i = axis.indexA;
-    const double rB = eb[0] * absC(i, 0) + eb[1] * absC(i, 1) + eb[2] * absC(i, 2);
-    depth = (ea[i] + rB) - std::abs(a.axes.col(i).dot(D));
+    depth = faceDepthA(a, b, absC, i, a.axes.col(i).dot(D));
   } else if (axis.kind == AxisKind::FaceB) {
     const int j = axis.indexB;
-    const double rA = ea[0] * absC(0, j) + ea[1] * absC(1, j) + ea[2] * absC(2, j);
-    depth = (rA + eb[j]) - std::abs(b.axes.col(j).dot(D));
+    depth = faceDepthB(a, b, absC, j, b.axes.col(j).dot(D));
   } else {
-    const int i = axis.indexA, j = axis.indexB;
-    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
     const auto absCEdge = [&](int r, int c) { return absC(r, c) + params.absCEpsilon; };
-    const Vec3 L = a.axes.col(i).cross(b.axes.col(j));
-    const double rA = ea[i1] * absCEdge(i2, j) + ea[i2] * absCEdge(i1, j);
-    const double rB = eb[j1] * absCEdge(i, j2) + eb[j2] * absCEdge(i, j1);
-    const double length = std::sqrt(L.squaredNorm());
+    const EdgeOverlap o = edgeOverlap(a, b, D, absCEdge, axis.indexA, axis.indexB);
+    const double length = std::sqrt(o.L.squaredNorm());
     // The full test skips such an axis, so it says nothing about the full test's answer.
     if (!(length >= params.parallelCutoff)) return false;
-    depth = ((rA + rB) - std::abs(L.dot(D))) / length;
+    depth = o.overlap / length;
   }
-  const double tieWidth = params.faceTieTolerance * (ea.maxCoeff() + eb.maxCoeff());
+  const double tieWidth = faceTieWidth(a, b, params);
   // Twice the tie width: once for the full test's preference of a tied face or a face over an
   // edge, once (with the relative term) for the rounding of these few operations.
   return depth + 2.0 * tieWidth + 1e-15 * std::abs(depth) <= -margin;
@@ -316,7 +379,7 @@ double depthAfterTranslationAtLeast(const Obb& a, const Obb& b, const Separating
     return -std::numeric_limits<double>::infinity();
   const Vec3& ea = a.halfExtents;
   const Vec3& eb = b.halfExtents;
-  const double tieWidth = params.faceTieTolerance * (ea.maxCoeff() + eb.maxCoeff());
+  const double tieWidth = faceTieWidth(a, b, params);
   const double scale = 1.0 + a.center.cwiseAbs().maxCoeff() + b.center.cwiseAbs().maxCoeff() +
                        ea.sum() + eb.sum() + translation;
   return result.depth * (1.0 - params.edgeBias) - tieWidth - translation - 1e-9 * scale;

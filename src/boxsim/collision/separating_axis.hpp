@@ -6,6 +6,13 @@
 
 namespace boxsim {
 
+/// m: a pair intersects when its separating-axis depth exceeds this. Boxes built touching (a
+/// tower) overlap by rounding, ~1e-17 m for unit boxes; 1 nm ignores that and nothing else. The
+/// default of the techniques' intersection tests (TimeOfImpactParams::depthTolerance of the
+/// time-of-impact search), and the measure by which scene loading rejects boxes that overlap at
+/// the start.
+inline constexpr double kIntersectionDepthTolerance = 1e-9;
+
 /// Tolerances of the separating-axis test.
 struct SeparatingAxisParams {
   /// Edge-edge axes whose cross product is shorter than this (unitless, the sine of the angle

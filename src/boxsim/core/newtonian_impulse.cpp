@@ -67,65 +67,123 @@ Eigen::Vector2d pressureCentreWithin(const Eigen::Vector2d& p, const std::array<
   }
   return scale * p;
 }
+
+using Vec5 = Eigen::Matrix<double, 5, 1>;
+using Mat5 = FrictionRows::Mat5;
+
+/// True when `rows` were built from exactly these inputs (bitwise), so they stand.
+bool rowsCurrent(const FrictionRows& rows, const RigidBody& a, const RigidBody& b,
+                 const Vec3& ra, const Vec3& rb, const Vec3& n, bool torsion, bool tipping) {
+  return rows.valid && rows.torsion == torsion && rows.tipping == tipping &&
+         sameBits(rows.ra, ra) && sameBits(rows.rb, rb) && sameBits(rows.n, n) &&
+         sameBits(rows.IinvA, a.Iinv) && sameBits(rows.IinvB, b.Iinv) &&
+         sameBits(rows.invMassA, a.invMass) && sameBits(rows.invMassB, b.invMass);
+}
+
+/// Builds the five friction rows of a contact (lever arms ra, rb in m, unit normal n from a to
+/// b; the spin row when `torsion`, the tipping rows when `tipping`) and the pair's inverse mass
+/// W in them, factorised, into `rows` with the inputs they came from.
+void buildRows(FrictionRows& rows, const RigidBody& a, const RigidBody& b, const Vec3& ra,
+               const Vec3& rb, const Vec3& n, bool torsion, bool tipping) {
+  rows.ra = ra;
+  rows.rb = rb;
+  rows.n = n;
+  rows.IinvA = a.Iinv;
+  rows.IinvB = b.Iinv;
+  rows.invMassA = a.invMass;
+  rows.invMassB = b.invMass;
+  rows.torsion = torsion;
+  rows.tipping = tipping;
+  rows.valid = true;
+  rows.t1 = n.unitOrthogonal();
+  rows.t2 = n.cross(rows.t1);
+  // The five rows friction works on, as velocity Jacobians: row i reads
+  // L_i · (v_b - v_a) + G_b,i · ω_b - G_a,i · ω_a. Sliding along t1, t2 (L = t, G = r × t),
+  // spin about n and tipping about t1, t2 (L = 0, G = n, t1, t2); a row left out is zero.
+  rows.Ga.setZero();
+  rows.Gb.setZero();
+  rows.Ga.col(0) = ra.cross(rows.t1);
+  rows.Ga.col(1) = ra.cross(rows.t2);
+  rows.Gb.col(0) = rb.cross(rows.t1);
+  rows.Gb.col(1) = rb.cross(rows.t2);
+  if (torsion) rows.Ga.col(2) = rows.Gb.col(2) = n;
+  if (tipping) {
+    rows.Ga.col(3) = rows.Gb.col(3) = rows.t1;
+    rows.Ga.col(4) = rows.Gb.col(4) = rows.t2;
+  }
+  // The pair's inverse mass in those rows:
+  // W = (1/m_a + 1/m_b) LᵀL + G_aᵀ I_a⁻¹ G_a + G_bᵀ I_b⁻¹ G_b.
+  Mat5& W = rows.W;
+  W = rows.Ga.transpose() * (a.Iinv * rows.Ga) + rows.Gb.transpose() * (b.Iinv * rows.Gb);
+  W(0, 0) += a.invMass + b.invMass;
+  W(1, 1) += a.invMass + b.invMass;
+  for (int i = 2; i < 5; ++i)
+    if (rows.Ga.col(i).isZero(0.0)) W(i, i) = 1.0;  // a row left out: its impulse stays 0
+  // W is symmetric positive definite (a pair's inverse mass restricted to independent rows).
+  rows.llt.compute(W);
+  rows.factorised = rows.llt.info() == Eigen::Success;
+}
+
+/// Coulomb (Goyal, Ruina and Papadopoulos' ellipse): when (J_t, τ / ρ) of `total` exceeds
+/// μs N (N in N s, ρ = radius in m, no spin term without torsion), scales it onto the ellipse
+/// of μd N and sets the couple to the one that stops the tipping under the friction so limited,
+/// from the sums `before` and the rows' velocities `slip` (m/s, rad/s) with inverse mass W.
+void limitByCoulomb(Vec5& total, const Vec5& before, const Vec5& slip, const Mat5& W,
+                    const Friction& friction, double N, double radius, bool torsion) {
+  const double load = std::hypot(total(0), total(1), torsion ? total(2) / radius : 0.0);
+  if (load > friction.muStatic * N) {
+    total.head<3>() *= load > 0.0 ? friction.muDynamic * N / load : 0.0;
+    // Sliding: the couple that stops the tipping under the friction as limited.
+    const Eigen::Vector2d tip = slip.tail<2>() + W.block<2, 3>(3, 0) * (total.head<3>() - before.head<3>());
+    total.tail<2>() = before.tail<2>() - W.block<2, 2>(3, 3).llt().solve(tip);
+  }
+}
+
+/// Holds the couple of `total` (its rows 3, 4, N m s about t1, t2) to a centre of pressure
+/// p = n × couple / N within the patch polygon (N in N s).
+void holdCoupleInPatch(Vec5& total, const ContactPatch& patch, const Vec3& t1, const Vec3& t2,
+                       double N) {
+  std::array<Eigen::Vector2d, 4> q;
+  for (int k = 0; k < patch.count; ++k)
+    q[k] = Eigen::Vector2d(patch.offsets[k].dot(t1), patch.offsets[k].dot(t2));
+  // n × (x t1 + y t2) = x t2 - y t1, and back: couple = N p × n.
+  const Eigen::Vector2d p = N > 0.0 ? Eigen::Vector2d(Eigen::Vector2d(-total(4), total(3)) / N)
+                                    : Eigen::Vector2d(Eigen::Vector2d::Zero());
+  const Eigen::Vector2d held = pressureCentreWithin(p, q, patch.count);
+  total(3) = N * held.y();
+  total(4) = -N * held.x();
+}
+
+/// Applies the change of the friction sums in the rows (N s, N m s): b receives +J and the
+/// angular impulse Gb change, a the opposite, unless immovable.
+void applyRowImpulse(RigidBody& a, RigidBody& b, const FrictionRows& rows, const Vec5& change) {
+  const Vec3 J = change(0) * rows.t1 + change(1) * rows.t2;
+  if (!a.immovable) {
+    a.s.P -= J;
+    a.s.L -= rows.Ga * change;
+    a.updateVelocities();
+  }
+  if (!b.immovable) {
+    b.s.P += J;
+    b.s.L += rows.Gb * change;
+    b.updateVelocities();
+  }
+}
 }  // namespace
 
 void applyPatchFriction(RigidBody& a, RigidBody& b, const Vec3& ra, const Vec3& rb, const Vec3& n,
                         const Friction& friction, const ContactPatch& patch, FrictionSum& sum) {
   if (a.immovable && b.immovable) return;
-  using Vec5 = Eigen::Matrix<double, 5, 1>;
-  using Mat5 = FrictionRows::Mat5;
   const bool torsion = patch.radius > 0.0;
   const bool tipping = patch.count >= 2;
   FrictionRows& rows = sum.rows;
-  if (!(rows.valid && rows.torsion == torsion && rows.tipping == tipping &&
-        sameBits(rows.ra, ra) && sameBits(rows.rb, rb) && sameBits(rows.n, n) &&
-        sameBits(rows.IinvA, a.Iinv) && sameBits(rows.IinvB, b.Iinv) &&
-        sameBits(rows.invMassA, a.invMass) && sameBits(rows.invMassB, b.invMass))) {
-    rows.ra = ra;
-    rows.rb = rb;
-    rows.n = n;
-    rows.IinvA = a.Iinv;
-    rows.IinvB = b.Iinv;
-    rows.invMassA = a.invMass;
-    rows.invMassB = b.invMass;
-    rows.torsion = torsion;
-    rows.tipping = tipping;
-    rows.valid = true;
-    rows.t1 = n.unitOrthogonal();
-    rows.t2 = n.cross(rows.t1);
-    // The five rows friction works on, as velocity Jacobians: row i reads
-    // L_i · (v_b - v_a) + G_b,i · ω_b - G_a,i · ω_a. Sliding along t1, t2 (L = t, G = r × t),
-    // spin about n and tipping about t1, t2 (L = 0, G = n, t1, t2); a row left out is zero.
-    rows.Ga.setZero();
-    rows.Gb.setZero();
-    rows.Ga.col(0) = ra.cross(rows.t1);
-    rows.Ga.col(1) = ra.cross(rows.t2);
-    rows.Gb.col(0) = rb.cross(rows.t1);
-    rows.Gb.col(1) = rb.cross(rows.t2);
-    if (torsion) rows.Ga.col(2) = rows.Gb.col(2) = n;
-    if (tipping) {
-      rows.Ga.col(3) = rows.Gb.col(3) = rows.t1;
-      rows.Ga.col(4) = rows.Gb.col(4) = rows.t2;
-    }
-    // The pair's inverse mass in those rows:
-    // W = (1/m_a + 1/m_b) LᵀL + G_aᵀ I_a⁻¹ G_a + G_bᵀ I_b⁻¹ G_b.
-    Mat5& W = rows.W;
-    W = rows.Ga.transpose() * (a.Iinv * rows.Ga) + rows.Gb.transpose() * (b.Iinv * rows.Gb);
-    W(0, 0) += a.invMass + b.invMass;
-    W(1, 1) += a.invMass + b.invMass;
-    for (int i = 2; i < 5; ++i)
-      if (rows.Ga.col(i).isZero(0.0)) W(i, i) = 1.0;  // a row left out: its impulse stays 0
-    // W is symmetric positive definite (a pair's inverse mass restricted to independent rows).
-    rows.llt.compute(W);
-    rows.factorised = rows.llt.info() == Eigen::Success;
-  }
+  if (!rowsCurrent(rows, a, b, ra, rb, n, torsion, tipping))
+    buildRows(rows, a, b, ra, rb, n, torsion, tipping);
   const Vec3& t1 = rows.t1;
   const Vec3& t2 = rows.t2;
-  const FrictionRows::Mat35& Ga = rows.Ga;
-  const FrictionRows::Mat35& Gb = rows.Gb;
   const Mat5& W = rows.W;
   const Vec3 dv = b.v - a.v;
-  Vec5 slip = Gb.transpose() * b.omega - Ga.transpose() * a.omega;
+  Vec5 slip = rows.Gb.transpose() * b.omega - rows.Ga.transpose() * a.omega;
   slip(0) += t1.dot(dv);
   slip(1) += t2.dot(dv);
   // Nothing slides, spins or tips: the sums stand (the budget only ever grows).
@@ -139,39 +197,13 @@ void applyPatchFriction(RigidBody& a, RigidBody& b, const Vec3& ra, const Vec3& 
   if (!total.allFinite()) return;
   // Coulomb: (J_t, τ / ρ) within μs N, else on the ellipse of μd N.
   const double N = sum.normal;
-  const double load = std::hypot(total(0), total(1), torsion ? total(2) / patch.radius : 0.0);
-  if (load > friction.muStatic * N) {
-    total.head<3>() *= load > 0.0 ? friction.muDynamic * N / load : 0.0;
-    // Sliding: the couple that stops the tipping under the friction as limited.
-    const Eigen::Vector2d tip = slip.tail<2>() + W.block<2, 3>(3, 0) * (total.head<3>() - before.head<3>());
-    total.tail<2>() = before.tail<2>() - W.block<2, 2>(3, 3).llt().solve(tip);
-  }
+  limitByCoulomb(total, before, slip, W, friction, N, patch.radius, torsion);
   // The couple: its centre of pressure p = n × couple / N within the patch.
-  if (tipping) {
-    std::array<Eigen::Vector2d, 4> q;
-    for (int k = 0; k < patch.count; ++k)
-      q[k] = Eigen::Vector2d(patch.offsets[k].dot(t1), patch.offsets[k].dot(t2));
-    // n × (x t1 + y t2) = x t2 - y t1, and back: couple = N p × n.
-    const Eigen::Vector2d p = N > 0.0 ? Eigen::Vector2d(Eigen::Vector2d(-total(4), total(3)) / N)
-                                      : Eigen::Vector2d(Eigen::Vector2d::Zero());
-    const Eigen::Vector2d held = pressureCentreWithin(p, q, patch.count);
-    total(3) = N * held.y();
-    total(4) = -N * held.x();
-  }
+  if (tipping) holdCoupleInPatch(total, patch, t1, t2, N);
   const Vec5 change = total - before;
   // The kinetic energy changes by Δ · slip + ½ Δᵀ W Δ: an increment that would raise it waits.
   if (change.dot(slip) + 0.5 * change.dot(W * change) > 1e-12 * slip.squaredNorm() / W.norm()) return;
-  const Vec3 J = change(0) * t1 + change(1) * t2;
-  if (!a.immovable) {
-    a.s.P -= J;
-    a.s.L -= Ga * change;
-    a.updateVelocities();
-  }
-  if (!b.immovable) {
-    b.s.P += J;
-    b.s.L += Gb * change;
-    b.updateVelocities();
-  }
+  applyRowImpulse(a, b, rows, change);
   sum.tangential = total(0) * t1 + total(1) * t2;
   sum.torsional = total(2);
   sum.couple = total(3) * t1 + total(4) * t2;

@@ -24,6 +24,18 @@ World tableWorld() {
   return world;
 }
 
+/// Body index of the table in tableWorld() (the ground is body 0).
+constexpr int kTable = 1;
+
+/// A scene on tableWorld() named `name`, drawing the thesis' figure `figure`; the rest is empty.
+StickingScene tableScene(const char* name, const char* figure) {
+  StickingScene scene;
+  scene.name = name;
+  scene.figure = figure;
+  scene.world = tableWorld();
+  return scene;
+}
+
 /// The rotation by `degrees` about +z.
 Quat aboutZ(double degrees) { return axisAngleDegrees(Vec3::UnitZ(), degrees); }
 
@@ -82,16 +94,12 @@ constexpr double kCubeHalf = 0.1;  // m: the small cubes are 0.2 m on a side
 }  // namespace
 
 StickingScene pivotingBox(const PivotingBoxSpec& spec) {
-  StickingScene scene;
-  scene.name = "pivoting_box";
-  scene.figure = "6.2";
-  scene.world = tableWorld();
-  const int table = 1;
+  StickingScene scene = tableScene("pivoting_box", "6.2");
   const int box = addBox(scene.world, "box", spec.halfExtents, Vec3(spec.overhang, spec.halfExtents.y(), 0.0));
   const Vec3 pivot = Vec3::Zero();
   turnAbout(scene.world, box, pivot, -spec.tiltDegrees);
   // The table's edge lies across the box's bottom face: the face carries the normal.
-  addContact(scene, "pivot", table, box, edgeEnds(scene.world, box, pivot), box, Vec3::UnitY());
+  addContact(scene, "pivot", kTable, box, edgeEnds(scene.world, box, pivot), box, Vec3::UnitY());
   scene.links = {HingeLink{{box}, pivot}};
   scene.pivots = {0};
   scene.topBody = box;
@@ -100,11 +108,7 @@ StickingScene pivotingBox(const PivotingBoxSpec& spec) {
 }
 
 StickingScene pivotingGroup() {
-  StickingScene scene;
-  scene.name = "pivoting_group";
-  scene.figure = "6.1";
-  scene.world = tableWorld();
-  const int table = 1;
+  StickingScene scene = tableScene("pivoting_group", "6.1");
   const Vec3 half = Vec3::Constant(kCubeHalf);
   const double left = 0.05 - kCubeHalf;   // x of the left column's centres
   const double right = 0.05 + kCubeHalf;  // x of the right column's centres
@@ -115,7 +119,7 @@ StickingScene pivotingGroup() {
   const Vec3 pivot = Vec3::Zero();
   for (const int k : {bl, br, tl, tr}) turnAbout(scene.world, k, pivot, -kTiltDegrees);
   const World& w = scene.world;
-  addContact(scene, "pivot", table, bl, edgeEnds(w, bl, pivot), bl, Vec3::UnitY());
+  addContact(scene, "pivot", kTable, bl, edgeEnds(w, bl, pivot), bl, Vec3::UnitY());
   // Face contacts: the four corners of the pushed box's touching face, normal of the pusher.
   addContact(scene, "BL-BR", bl, br, faceCorners(w, br, 0, -1.0), bl, Vec3::UnitX());
   addContact(scene, "BL-TL", bl, tl, faceCorners(w, tl, 1, -1.0), bl, Vec3::UnitY());
@@ -129,11 +133,7 @@ StickingScene pivotingGroup() {
 }
 
 StickingScene twoFrames(const TwoFramesSpec& spec) {
-  StickingScene scene;
-  scene.name = "two_frames";
-  scene.figure = "6.3";
-  scene.world = tableWorld();
-  const int table = 1;
+  StickingScene scene = tableScene("two_frames", "6.3");
   const Vec3 halfA = Vec3::Constant(kCubeHalf);
   const int a = addBox(scene.world, "A", halfA, Vec3(spec.overhangA, halfA.y(), 0.0));
   RigidBody bodyB = RigidBody::box(spec.halfExtentsB, spec.massB);
@@ -145,7 +145,7 @@ StickingScene twoFrames(const TwoFramesSpec& spec) {
   turnAbout(scene.world, b, hinge2, -spec.tiltDegreesB);
   for (const int k : {a, b}) turnAbout(scene.world, k, pivot, -spec.tiltDegreesA);
   hinge2 = aboutZ(-spec.tiltDegreesA) * hinge2;
-  addContact(scene, "pivot", table, a, edgeEnds(scene.world, a, pivot), a, Vec3::UnitY());
+  addContact(scene, "pivot", kTable, a, edgeEnds(scene.world, a, pivot), a, Vec3::UnitY());
   addContact(scene, "hinge", a, b, edgeEnds(scene.world, b, hinge2), b, Vec3::UnitY());
   scene.links = {HingeLink{{a}, pivot}, HingeLink{{b}, hinge2}};
   scene.pivots = {0, 1};

@@ -180,36 +180,37 @@ std::string terminalCommand(ImageType type, int width, int height, int gifDelay)
   return "";
 }
 
-std::string scriptFor(const Trajectory& trajectory, ImageType type, const std::string& outputPath,
-                      const RenderOptions& options) {
-  const FramePlan plan = planFrames(trajectory, type, options);
-  const render::SceneDrawer drawer(trajectory, options.groundHalfSize, options.bodyColours);
-  // The camera is fixed by every frame, drawn or not, so that all pictures of a run agree.
-  render::SceneBounds bounds;
-  for (int f = 0; f < static_cast<int>(trajectory.frames.size()); ++f) {
-    bounds.include(drawer.draw(f));
-  }
-  std::vector<FrameDrawing> drawings;
-  for (const int f : plan.frames) drawings.push_back(drawer.draw(f));
+// Where the panels and text bands lie on the canvas, pixels.
+struct PanelLayout {
+  int panels = 1;            // a strip puts the frames side by side; a GIF shows one at a time
+  double panelWidth = 0.0;   // width of one panel
+  double height = 0.0;       // height of the canvas
+  double canvasWidth = 0.0;  // panels × panelWidth
+  double titleBand = 0.0;    // band for the title at the top (0 without a title)
+  double timeBand = 0.0;     // band for the time, below the title
+  double areaTop = 0.0;      // top of the picture area, from the bottom of the canvas
+};
 
+PanelLayout panelLayout(ImageType type, std::size_t frameCount, const RenderOptions& options) {
+  PanelLayout l;
   // A strip puts the frames side by side; a GIF shows them one after another.
-  const int panels = type == ImageType::gif ? 1 : static_cast<int>(plan.frames.size());
-  const double panelWidth = std::max(16, options.width);
-  const double height = std::max(16, options.height);
-  const double canvasWidth = panelWidth * panels;
-  const double titleBand = options.title.empty() ? 0.0 : std::min(kTextBand, 0.25 * height);
-  const double timeBand = std::min(kTextBand, 0.25 * height);
-  const double areaTop = height - titleBand - timeBand;
-  const double areaWidth = panelWidth - 2.0 * kPad;
-  const double areaHeight = areaTop - kPad;
-  const render::Framing framing = render::frameScene(bounds, areaWidth, areaHeight);
-  const Vec3& c = framing.centre;
+  l.panels = type == ImageType::gif ? 1 : static_cast<int>(frameCount);
+  l.panelWidth = std::max(16, options.width);
+  l.height = std::max(16, options.height);
+  l.canvasWidth = l.panelWidth * l.panels;
+  l.titleBand = options.title.empty() ? 0.0 : std::min(kTextBand, 0.25 * l.height);
+  l.timeBand = std::min(kTextBand, 0.25 * l.height);
+  l.areaTop = l.height - l.titleBand - l.timeBand;
+  return l;
+}
 
-  ScriptWriter script;
+// The script's preamble: terminal, output, view and the fixed axis ranges.
+void writePreamble(ScriptWriter& script, ImageType type, const std::string& outputPath,
+                   const PanelLayout& layout, const render::Framing& framing, int gifDelay) {
   std::ostringstream& s = script.out();
-  s << "# boxsim render: " << plan.frames.size() << " frame(s) of " << trajectory.bodies.size()
-    << " bodies\n";
-  s << terminalCommand(type, static_cast<int>(canvasWidth), static_cast<int>(height), plan.gifDelay)
+  const Vec3& c = framing.centre;
+  s << terminalCommand(type, static_cast<int>(layout.canvasWidth), static_cast<int>(layout.height),
+                       gifDelay)
     << "\n";
   s << "set output " << quoted(outputPath) << "\n";
   s << "set encoding utf8\n";
@@ -222,87 +223,132 @@ std::string scriptFor(const Trajectory& trajectory, ImageType type, const std::s
   s << "set xrange [" << c.x() - 0.5 * framing.span << ":" << c.x() + 0.5 * framing.span << "]\n";
   s << "set yrange [" << c.y() - 0.5 * framing.span << ":" << c.y() + 0.5 * framing.span << "]\n";
   s << "set zrange [" << c.z() - framing.zHalf << ":" << c.z() + framing.zHalf << "]\n";
-  if (panels > 1) s << "set multiplot\n";
+}
 
-  for (std::size_t panel = 0; panel < plan.frames.size(); ++panel) {
-    const int f = plan.frames[panel];
-    const FrameDrawing& drawing = drawings[panel];
-    const double left = type == ImageType::gif ? 0.0 : panelWidth * static_cast<double>(panel);
-    s << "# frame " << f << "\n";
-    s << "unset object\nunset arrow\nunset label\n";
-    s << "set lmargin at screen " << (left + kPad) / canvasWidth << "\n";
-    s << "set rmargin at screen " << (left + panelWidth - kPad) / canvasWidth << "\n";
-    s << "set bmargin at screen " << kPad / height << "\n";
-    s << "set tmargin at screen " << areaTop / height << "\n";
-    if (!options.title.empty() && (panel == 0 || type == ImageType::gif)) {
-      s << "set label 1 " << quoted(options.title) << " at screen 0.5, "
-        << (height - 0.5 * titleBand) / height << " center noenhanced font ',12'\n";
-    }
-    char time[64];
-    std::snprintf(time, sizeof time, "t = %.2f s", trajectory.frames[f].t);
-    s << "set label 2 " << quoted(time) << " at screen " << (left + 0.5 * panelWidth) / canvasWidth
-      << ", " << (areaTop + 0.5 * timeBand) / height << " center noenhanced\n";
-    int object = 0;
-    for (const Polygon& ground : drawing.grounds) {
-      s << "set object " << ++object << " polygon from ";
-      for (std::size_t i = 0; i < ground.corners.size(); ++i) {
-        if (i > 0) s << " to ";
-        script.point(ground.corners[i]);
-      }
-      s << " to ";
-      script.point(ground.corners[0]);
-      s << " behind fc rgb '" << hexColour(ground.rgb) << "' fillstyle solid 1.0 border lc rgb '"
-        << hexColour(kGroundEdgeColour) << "' lw 0.6\n";
-    }
-    for (const Polygon& shadow : drawing.shadows) {
-      s << "set object " << ++object << " polygon from ";
-      for (std::size_t i = 0; i < shadow.corners.size(); ++i) {
-        if (i > 0) s << " to ";
-        script.point(shadow.corners[i]);
-      }
-      s << " to ";
-      script.point(shadow.corners[0]);
-      s << " behind fc rgb '" << hexColour(shadow.rgb) << "' fillstyle solid 1.0 noborder\n";
-    }
-    for (const Segment& line : drawing.grid) {
-      s << "set arrow from ";
-      script.point(line.from);
-      s << " to ";
-      script.point(line.to);
-      s << " nohead back lc rgb '" << hexColour(kGridColour) << "' lw 0.6\n";
-    }
-    if (drawing.faces.empty()) {
-      // splot needs data: one dot in the background colour at the far corner of the ranges.
-      s << "$frame << EOD\n"
-        << c.x() - 0.5 * framing.span << ' ' << c.y() + 0.5 * framing.span << ' '
-        << c.z() - framing.zHalf << "\nEOD\n";
-      s << "splot $frame using 1:2:3 with dots lc rgb '#ffffff' notitle\n";
-      continue;
-    }
-    // The faces grouped by colour, one data set (index) per colour: `with polygons` takes one
-    // fill colour per plot element, and the gif terminal would round per-point colours to its
-    // own table. Polygons are separated by one blank line, data sets by two.
-    std::map<int, std::vector<const Polygon*>> byColour;
-    for (const Polygon& face : drawing.faces) byColour[face.rgb].push_back(&face);
-    s << "$frame << EOD\n";
-    for (const auto& [rgb, faces] : byColour) {
-      for (const Polygon* face : faces) {
-        for (const Vec3& p : face->corners) s << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
-        s << '\n';
-      }
+// A panel's margins, title (first panel, or every GIF frame) and time label.
+void writePanelFrame(ScriptWriter& script, const PanelLayout& layout, double left,
+                     const std::string& title, double t) {
+  std::ostringstream& s = script.out();
+  s << "unset object\nunset arrow\nunset label\n";
+  s << "set lmargin at screen " << (left + kPad) / layout.canvasWidth << "\n";
+  s << "set rmargin at screen " << (left + layout.panelWidth - kPad) / layout.canvasWidth << "\n";
+  s << "set bmargin at screen " << kPad / layout.height << "\n";
+  s << "set tmargin at screen " << layout.areaTop / layout.height << "\n";
+  if (!title.empty()) {
+    s << "set label 1 " << quoted(title) << " at screen 0.5, "
+      << (layout.height - 0.5 * layout.titleBand) / layout.height
+      << " center noenhanced font ',12'\n";
+  }
+  char time[64];
+  std::snprintf(time, sizeof time, "t = %.2f s", t);
+  s << "set label 2 " << quoted(time) << " at screen "
+    << (left + 0.5 * layout.panelWidth) / layout.canvasWidth << ", "
+    << (layout.areaTop + 0.5 * layout.timeBand) / layout.height << " center noenhanced\n";
+}
+
+// A filled polygon behind the plot as `set object` number `object`; `style` ends the line.
+void writePolygonObject(ScriptWriter& script, int object, const Polygon& polygon,
+                        const std::string& style) {
+  std::ostringstream& s = script.out();
+  s << "set object " << object << " polygon from ";
+  for (std::size_t i = 0; i < polygon.corners.size(); ++i) {
+    if (i > 0) s << " to ";
+    script.point(polygon.corners[i]);
+  }
+  s << " to ";
+  script.point(polygon.corners[0]);
+  s << " behind fc rgb '" << hexColour(polygon.rgb) << "' fillstyle solid 1.0 " << style << "\n";
+}
+
+// The floors, the shadows on them and the grid, drawn behind the boxes.
+void writeBackdrop(ScriptWriter& script, const FrameDrawing& drawing) {
+  std::ostringstream& s = script.out();
+  int object = 0;
+  const std::string groundBorder = "border lc rgb '" + hexColour(kGroundEdgeColour) + "' lw 0.6";
+  for (const Polygon& ground : drawing.grounds)
+    writePolygonObject(script, ++object, ground, groundBorder);
+  for (const Polygon& shadow : drawing.shadows)
+    writePolygonObject(script, ++object, shadow, "noborder");
+  for (const Segment& line : drawing.grid) {
+    s << "set arrow from ";
+    script.point(line.from);
+    s << " to ";
+    script.point(line.to);
+    s << " nohead back lc rgb '" << hexColour(kGridColour) << "' lw 0.6\n";
+  }
+}
+
+// The box faces as one `splot ... with polygons`, or a lone dot when there are none.
+void writeFaces(ScriptWriter& script, const FrameDrawing& drawing, const render::Framing& framing) {
+  std::ostringstream& s = script.out();
+  const Vec3& c = framing.centre;
+  if (drawing.faces.empty()) {
+    // splot needs data: one dot in the background colour at the far corner of the ranges.
+    s << "$frame << EOD\n"
+      << c.x() - 0.5 * framing.span << ' ' << c.y() + 0.5 * framing.span << ' '
+      << c.z() - framing.zHalf << "\nEOD\n";
+    s << "splot $frame using 1:2:3 with dots lc rgb '#ffffff' notitle\n";
+    return;
+  }
+  // The faces grouped by colour, one data set (index) per colour: `with polygons` takes one
+  // fill colour per plot element, and the gif terminal would round per-point colours to its
+  // own table. Polygons are separated by one blank line, data sets by two.
+  std::map<int, std::vector<const Polygon*>> byColour;
+  for (const Polygon& face : drawing.faces) byColour[face.rgb].push_back(&face);
+  s << "$frame << EOD\n";
+  for (const auto& [rgb, faces] : byColour) {
+    for (const Polygon* face : faces) {
+      for (const Vec3& p : face->corners) s << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
       s << '\n';
     }
-    s << "EOD\n";
-    s << "splot";
-    int index = 0;
-    for (const auto& [rgb, faces] : byColour) {
-      s << (index > 0 ? ", \\\n  ''" : " $frame") << " index " << index
-        << " with polygons fillstyle solid 1.0 fc rgb '" << hexColour(rgb) << "' notitle";
-      ++index;
-    }
-    s << "\n";
+    s << '\n';
   }
-  if (panels > 1) s << "unset multiplot\n";
+  s << "EOD\n";
+  s << "splot";
+  int index = 0;
+  for (const auto& [rgb, faces] : byColour) {
+    s << (index > 0 ? ", \\\n  ''" : " $frame") << " index " << index
+      << " with polygons fillstyle solid 1.0 fc rgb '" << hexColour(rgb) << "' notitle";
+    ++index;
+  }
+  s << "\n";
+}
+
+std::string scriptFor(const Trajectory& trajectory, ImageType type, const std::string& outputPath,
+                      const RenderOptions& options) {
+  const FramePlan plan = planFrames(trajectory, type, options);
+  const render::SceneDrawer drawer(trajectory, options.groundHalfSize, options.bodyColours);
+  // The camera is fixed by every frame, drawn or not, so that all pictures of a run agree.
+  render::SceneBounds bounds;
+  for (int f = 0; f < static_cast<int>(trajectory.frames.size()); ++f) {
+    bounds.include(drawer.draw(f));
+  }
+  std::vector<FrameDrawing> drawings;
+  for (const int f : plan.frames) drawings.push_back(drawer.draw(f));
+
+  const PanelLayout layout = panelLayout(type, plan.frames.size(), options);
+  const double areaWidth = layout.panelWidth - 2.0 * kPad;
+  const double areaHeight = layout.areaTop - kPad;
+  const render::Framing framing = render::frameScene(bounds, areaWidth, areaHeight);
+
+  ScriptWriter script;
+  std::ostringstream& s = script.out();
+  s << "# boxsim render: " << plan.frames.size() << " frame(s) of " << trajectory.bodies.size()
+    << " bodies\n";
+  writePreamble(script, type, outputPath, layout, framing, plan.gifDelay);
+  if (layout.panels > 1) s << "set multiplot\n";
+  for (std::size_t panel = 0; panel < plan.frames.size(); ++panel) {
+    const int f = plan.frames[panel];
+    const double left =
+        type == ImageType::gif ? 0.0 : layout.panelWidth * static_cast<double>(panel);
+    const bool titled = panel == 0 || type == ImageType::gif;
+    s << "# frame " << f << "\n";
+    writePanelFrame(script, layout, left, titled ? options.title : std::string(),
+                    trajectory.frames[f].t);
+    writeBackdrop(script, drawings[panel]);
+    writeFaces(script, drawings[panel], framing);
+  }
+  if (layout.panels > 1) s << "unset multiplot\n";
   s << "unset output\n";
   return script.str();
 }

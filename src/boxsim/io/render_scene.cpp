@@ -261,27 +261,16 @@ void drawGrid(const Vec2& squareCentre, double squareHalf, const GroundPlane& gr
   }
 }
 
-}  // namespace
-
-ViewAxes viewAxes() {
-  const double a = kViewRotX * kPi / 180.0;
-  const double b = kViewRotZ * kPi / 180.0;
-  return {Vec3(std::cos(b), std::sin(b), 0.0),
-          Vec3(-std::sin(b) * std::cos(a), std::cos(b) * std::cos(a), std::sin(a)),
-          Vec3(std::sin(a) * std::sin(b), -std::sin(a) * std::cos(b), std::cos(a))};
-}
-
-SceneDrawer::SceneDrawer(const Trajectory& trajectory, double groundHalfSize,
-                         const std::map<std::string, int>& bodyColours)
-    : trajectory_(trajectory), view_(viewAxes()) {
+// Fill colours before shading: the palette cycled over the movable bodies, grey for immovable
+// ones, unless bodyColours names the body.
+std::vector<int> fillColours(const Trajectory& trajectory,
+                             const std::map<std::string, int>& bodyColours) {
   const std::size_t bodyCount = trajectory.bodies.size();
-  // Fill colours: the palette cycled over the movable bodies, grey for immovable ones, unless
-  // bodyColours names the body.
-  colour_.assign(bodyCount, kImmovableColour);
+  std::vector<int> colour(bodyCount, kImmovableColour);
   std::size_t movableOrdinal = 0;
   for (std::size_t b = 0; b < bodyCount; ++b)
     if (!trajectory.bodies[b].immovable)
-      colour_[b] = kBodyColours[movableOrdinal++ % kBodyColours.size()];
+      colour[b] = kBodyColours[movableOrdinal++ % kBodyColours.size()];
   for (const auto& [name, rgb] : bodyColours) {
     std::size_t b = 0;
     while (b < bodyCount && trajectory.bodies[b].name != name) ++b;
@@ -291,8 +280,14 @@ SceneDrawer::SceneDrawer(const Trajectory& trajectory, double groundHalfSize,
     if (rgb < 0 || rgb > 0xffffff)
       throw std::invalid_argument("render: the colour of body '" + name +
                                   "' must be 0xRRGGBB (0 to 0xffffff)");
-    colour_[b] = rgb;
+    colour[b] = rgb;
   }
+  return colour;
+}
+
+// Every frame has one finite, non-zero pose per body.
+void checkPoses(const Trajectory& trajectory) {
+  const std::size_t bodyCount = trajectory.bodies.size();
   for (std::size_t f = 0; f < trajectory.frames.size(); ++f) {
     const TrajectoryFrame& frame = trajectory.frames[f];
     if (frame.x.size() != bodyCount || frame.q.size() != bodyCount) {
@@ -309,32 +304,67 @@ SceneDrawer::SceneDrawer(const Trajectory& trajectory, double groundHalfSize,
       }
     }
   }
-  // The square the ground is drawn in: the movable boxes' footprint over the whole run plus
-  // room for two box sizes, so boxes near the edge still stand on visible ground.
-  Vec2 low = Vec2::Constant(std::numeric_limits<double>::infinity());
-  Vec2 high = -low;
-  double largestHalfExtent = 0.0;
-  for (std::size_t b = 0; b < bodyCount; ++b) {
-    if (trajectory.bodies[b].immovable) continue;
-    largestHalfExtent = std::max(largestHalfExtent, trajectory.bodies[b].halfExtents.maxCoeff());
-    for (const TrajectoryFrame& frame : trajectory.frames) {
-      for (const Face& face : boxFaces(frame.x[b], frame.q[b], trajectory.bodies[b].halfExtents)) {
-        for (const Vec3& c : face.corners) {
-          low = low.cwiseMin(groundPoint(c));
-          high = high.cwiseMax(groundPoint(c));
-        }
-      }
+}
+
+// The ground shadow (x, z) of a box, m, widens [low, high].
+void widenByBox(const TrajectoryFrame& frame, std::size_t b, const Vec3& halfExtents, Vec2& low,
+                Vec2& high) {
+  for (const Face& face : boxFaces(frame.x[b], frame.q[b], halfExtents)) {
+    for (const Vec3& c : face.corners) {
+      low = low.cwiseMin(groundPoint(c));
+      high = high.cwiseMax(groundPoint(c));
     }
   }
-  if (largestHalfExtent == 0.0) {  // nothing moves: a unit square at the origin
-    low = Vec2::Constant(-0.5);
-    high = Vec2::Constant(0.5);
-    largestHalfExtent = 0.5;
+}
+
+// The movable boxes' footprint on the ground over the whole run, (x, z) in m, and their
+// largest half extent; a unit square at the origin (half extent 0.5) when nothing moves.
+struct Footprint {
+  Vec2 low = Vec2::Constant(std::numeric_limits<double>::infinity());
+  Vec2 high = Vec2::Constant(-std::numeric_limits<double>::infinity());
+  double largestHalfExtent = 0.0;
+};
+
+Footprint movableFootprint(const Trajectory& trajectory) {
+  Footprint footprint;
+  for (std::size_t b = 0; b < trajectory.bodies.size(); ++b) {
+    if (trajectory.bodies[b].immovable) continue;
+    footprint.largestHalfExtent =
+        std::max(footprint.largestHalfExtent, trajectory.bodies[b].halfExtents.maxCoeff());
+    for (const TrajectoryFrame& frame : trajectory.frames)
+      widenByBox(frame, b, trajectory.bodies[b].halfExtents, footprint.low, footprint.high);
   }
-  squareCentre_ = 0.5 * (low + high);
-  squareHalf_ = groundHalfSize > 0.0
-                    ? groundHalfSize
-                    : 0.5 * (high - low).maxCoeff() + 2.0 * largestHalfExtent;
+  if (footprint.largestHalfExtent == 0.0) {  // nothing moves: a unit square at the origin
+    footprint.low = Vec2::Constant(-0.5);
+    footprint.high = Vec2::Constant(0.5);
+    footprint.largestHalfExtent = 0.5;
+  }
+  return footprint;
+}
+
+}  // namespace
+
+ViewAxes viewAxes() {
+  const double a = kViewRotX * kPi / 180.0;
+  const double b = kViewRotZ * kPi / 180.0;
+  return {Vec3(std::cos(b), std::sin(b), 0.0),
+          Vec3(-std::sin(b) * std::cos(a), std::cos(b) * std::cos(a), std::sin(a)),
+          Vec3(std::sin(a) * std::sin(b), -std::sin(a) * std::cos(b), std::cos(a))};
+}
+
+SceneDrawer::SceneDrawer(const Trajectory& trajectory, double groundHalfSize,
+                         const std::map<std::string, int>& bodyColours)
+    : trajectory_(trajectory), view_(viewAxes()) {
+  const std::size_t bodyCount = trajectory.bodies.size();
+  colour_ = fillColours(trajectory, bodyColours);
+  checkPoses(trajectory);
+  // The square the ground is drawn in: the movable boxes' footprint over the whole run plus
+  // room for two box sizes, so boxes near the edge still stand on visible ground.
+  const Footprint footprint = movableFootprint(trajectory);
+  squareCentre_ = 0.5 * (footprint.low + footprint.high);
+  squareHalf_ = groundHalfSize > 0.0 ? groundHalfSize
+                                     : 0.5 * (footprint.high - footprint.low).maxCoeff() +
+                                           2.0 * footprint.largestHalfExtent;
   // An immovable body that does not fit in the square, or is far wider than any moving box, is
   // a floor: only its top face is drawn. (Boxes that slide off a floor widen the square past
   // it; drawn as a box, that floor's sides then covered the picture in dark grey.)
@@ -343,15 +373,10 @@ SceneDrawer::SceneDrawer(const Trajectory& trajectory, double groundHalfSize,
     if (!trajectory.bodies[b].immovable || trajectory.frames.empty()) continue;
     Vec2 bodyLow = Vec2::Constant(std::numeric_limits<double>::infinity());
     Vec2 bodyHigh = -bodyLow;
-    const TrajectoryFrame& first = trajectory.frames.front();
-    for (const Face& face : boxFaces(first.x[b], first.q[b], trajectory.bodies[b].halfExtents)) {
-      for (const Vec3& c : face.corners) {
-        bodyLow = bodyLow.cwiseMin(groundPoint(c));
-        bodyHigh = bodyHigh.cwiseMax(groundPoint(c));
-      }
-    }
+    widenByBox(trajectory.frames.front(), b, trajectory.bodies[b].halfExtents, bodyLow, bodyHigh);
     const double width = (bodyHigh - bodyLow).maxCoeff();
-    huge_[b] = width > 2.0 * squareHalf_ || width > kFloorWidthRatio * 2.0 * largestHalfExtent;
+    huge_[b] = width > 2.0 * squareHalf_ ||
+               width > kFloorWidthRatio * 2.0 * footprint.largestHalfExtent;
   }
 }
 

@@ -9,7 +9,6 @@
 #include <set>
 #include <sstream>
 
-#include "boxsim/basic_colliding/time_of_impact.hpp"
 #include "boxsim/collision/broad_phase.hpp"
 #include "boxsim/collision/separating_axis.hpp"
 #include "boxsim/core/math.hpp"
@@ -276,71 +275,99 @@ void readBody(const Node& node, Scene& scene, std::set<std::string>& names) {
   scene.origins.push_back(node.path());
 }
 
+/// Fails at `key` when `adding` more bodies would take the scene's `before` past kMaxBodies.
+void requireRoom(const Node& node, const char* key, int before, double adding) {
+  if (before + adding > kMaxBodies)
+    node.at(key).fail("the scene would hold " + std::to_string(static_cast<long long>(before + adding)) +
+                          " bodies, more than the limit of " + std::to_string(kMaxBodies),
+                      "build fewer boxes");
+}
+
+/// A builder's "size" (m) and "mass" (kg), each left at the spec's default when absent.
+template <class Spec>
+void readSizeAndMass(const Node& node, Spec& spec) {
+  if (node.has("size")) spec.size = node.at("size").positive(kSizeRange);
+  if (node.has("mass")) spec.mass = node.at("mass").positive(kMassRange);
+}
+
+/// A stacking builder's (tower, pyramid) "origin" (m) and "gap" (m, >= 0), defaults when absent.
+template <class Spec>
+void readOriginAndGap(const Node& node, Spec& spec) {
+  if (node.has("origin")) spec.origin = node.at("origin").vec3(kCoordinateRange);
+  if (node.has("gap")) spec.gap = node.at("gap").nonNegative("m", &kCoordinateRange);
+}
+
+/// The "die" builder (scene_builders.hpp, DieSpec).
+void readDie(const Node& node, World& world) {
+  node.allowKeys({"type", "size", "mass", "position", "tilt_deg", "tilt_axis", "velocity", "angular_velocity", "friction"});
+  DieSpec spec;
+  readSizeAndMass(node, spec);
+  if (node.has("position")) spec.position = node.at("position").vec3(kCoordinateRange);
+  if (node.has("tilt_deg")) spec.tiltDeg = node.at("tilt_deg").number();
+  if (node.has("tilt_axis")) spec.tiltAxis = node.at("tilt_axis").nonZeroVec3("the tilt axis");
+  if (node.has("velocity")) spec.velocity = node.at("velocity").vec3(kSpeedRange);
+  if (node.has("angular_velocity")) spec.angularVelocity = node.at("angular_velocity").vec3(kAngularSpeedRange);
+  addDie(world, spec);
+}
+
+/// The "tower" builder (TowerSpec), into a world of `before` bodies.
+void readTower(const Node& node, World& world, int before) {
+  node.allowKeys({"type", "count", "size", "mass", "origin", "gap", "friction"});
+  TowerSpec spec;
+  if (node.has("count")) spec.count = node.at("count").count();
+  if (node.has("count")) requireRoom(node, "count", before, spec.count);
+  readSizeAndMass(node, spec);
+  readOriginAndGap(node, spec);
+  addTower(world, spec);
+}
+
+/// The "pyramid" builder (PyramidSpec), into a world of `before` bodies.
+void readPyramid(const Node& node, World& world, int before) {
+  node.allowKeys({"type", "base", "size", "mass", "origin", "gap", "friction"});
+  PyramidSpec spec;
+  if (node.has("base")) spec.base = node.at("base").count();
+  if (node.has("base")) requireRoom(node, "base", before, 0.5 * spec.base * (spec.base + 1.0));
+  readSizeAndMass(node, spec);
+  readOriginAndGap(node, spec);
+  addPyramid(world, spec);
+}
+
+/// The "clump" builder (ClumpSpec), into a world of `before` bodies.
+void readClump(const Node& node, World& world, int before) {
+  node.allowKeys({"type", "count", "size", "mass", "spacing", "center", "target", "speed", "spin", "seed", "friction"});
+  ClumpSpec spec;
+  if (node.has("count")) spec.count = node.at("count").count();
+  if (node.has("count")) requireRoom(node, "count", before, spec.count);
+  readSizeAndMass(node, spec);
+  if (node.has("spacing")) spec.spacing = node.at("spacing").positive(kSizeRange);
+  if (node.has("center")) spec.center = node.at("center").vec3(kCoordinateRange);
+  if (node.has("target")) spec.target = node.at("target").vec3(kCoordinateRange);
+  if (node.has("speed")) spec.speed = node.at("speed").bounded(kSpeedRange);
+  if (node.has("spin")) spec.spin = node.at("spin").nonNegative("rad/s", &kAngularSpeedRange);
+  if (node.has("seed")) spec.seed = static_cast<unsigned long>(node.at("seed").count());
+  // Without a "spacing" key the default spacing can still be too small for a large "size";
+  // the error then names "size", the key that is there.
+  if (!(spec.spacing > spec.size))
+    (node.has("spacing") ? node.at("spacing") : node.at("size"))
+        .fail("the spacing (2 m unless given) must exceed the cube size so the cubes start apart",
+              "make \"spacing\" larger than \"size\"");
+  addClump(world, spec);
+}
+
 void readBuilder(const Node& node, Scene& scene, std::set<std::string>& names) {
   node.requireObject("a builder");
   if (!node.has("type"))
     node.fail("missing \"type\"", "add \"type\": one of die, tower, pyramid, clump");
   const std::string type = node.at("type").string();
   const int before = static_cast<int>(scene.world.bodies.size());
-  const auto requireRoom = [&](const char* key, double adding) {
-    if (before + adding > kMaxBodies)
-      node.at(key).fail("the scene would hold " + std::to_string(static_cast<long long>(before + adding)) +
-                            " bodies, more than the limit of " + std::to_string(kMaxBodies),
-                        "build fewer boxes");
-  };
-  const auto size = [&](double fallback) { return node.has("size") ? node.at("size").positive(kSizeRange) : fallback; };
-  const auto mass = [&](double fallback) { return node.has("mass") ? node.at("mass").positive(kMassRange) : fallback; };
   if (type == "die") {
-    node.allowKeys({"type", "size", "mass", "position", "tilt_deg", "tilt_axis", "velocity", "angular_velocity", "friction"});
-    DieSpec spec;
-    spec.size = size(spec.size);
-    spec.mass = mass(spec.mass);
-    if (node.has("position")) spec.position = node.at("position").vec3(kCoordinateRange);
-    if (node.has("tilt_deg")) spec.tiltDeg = node.at("tilt_deg").number();
-    if (node.has("tilt_axis")) spec.tiltAxis = node.at("tilt_axis").nonZeroVec3("the tilt axis");
-    if (node.has("velocity")) spec.velocity = node.at("velocity").vec3(kSpeedRange);
-    if (node.has("angular_velocity")) spec.angularVelocity = node.at("angular_velocity").vec3(kAngularSpeedRange);
-    addDie(scene.world, spec);
+    readDie(node, scene.world);
   } else if (type == "tower") {
-    node.allowKeys({"type", "count", "size", "mass", "origin", "gap", "friction"});
-    TowerSpec spec;
-    if (node.has("count")) spec.count = node.at("count").count();
-    if (node.has("count")) requireRoom("count", spec.count);
-    spec.size = size(spec.size);
-    spec.mass = mass(spec.mass);
-    if (node.has("origin")) spec.origin = node.at("origin").vec3(kCoordinateRange);
-    if (node.has("gap")) spec.gap = node.at("gap").nonNegative("m", &kCoordinateRange);
-    addTower(scene.world, spec);
+    readTower(node, scene.world, before);
   } else if (type == "pyramid") {
-    node.allowKeys({"type", "base", "size", "mass", "origin", "gap", "friction"});
-    PyramidSpec spec;
-    if (node.has("base")) spec.base = node.at("base").count();
-    if (node.has("base")) requireRoom("base", 0.5 * spec.base * (spec.base + 1.0));
-    spec.size = size(spec.size);
-    spec.mass = mass(spec.mass);
-    if (node.has("origin")) spec.origin = node.at("origin").vec3(kCoordinateRange);
-    if (node.has("gap")) spec.gap = node.at("gap").nonNegative("m", &kCoordinateRange);
-    addPyramid(scene.world, spec);
+    readPyramid(node, scene.world, before);
   } else if (type == "clump") {
-    node.allowKeys({"type", "count", "size", "mass", "spacing", "center", "target", "speed", "spin", "seed", "friction"});
-    ClumpSpec spec;
-    if (node.has("count")) spec.count = node.at("count").count();
-    if (node.has("count")) requireRoom("count", spec.count);
-    spec.size = size(spec.size);
-    spec.mass = mass(spec.mass);
-    if (node.has("spacing")) spec.spacing = node.at("spacing").positive(kSizeRange);
-    if (node.has("center")) spec.center = node.at("center").vec3(kCoordinateRange);
-    if (node.has("target")) spec.target = node.at("target").vec3(kCoordinateRange);
-    if (node.has("speed")) spec.speed = node.at("speed").bounded(kSpeedRange);
-    if (node.has("spin")) spec.spin = node.at("spin").nonNegative("rad/s", &kAngularSpeedRange);
-    if (node.has("seed")) spec.seed = static_cast<unsigned long>(node.at("seed").count());
-    // Without a "spacing" key the default spacing can still be too small for a large "size";
-    // the error then names "size", the key that is there.
-    if (!(spec.spacing > spec.size))
-      (node.has("spacing") ? node.at("spacing") : node.at("size"))
-          .fail("the spacing (2 m unless given) must exceed the cube size so the cubes start apart",
-                "make \"spacing\" larger than \"size\"");
-    addClump(scene.world, spec);
+    readClump(node, scene.world, before);
   } else {
     node.at("type").fail("unknown builder type \"" + type + "\"",
                          "use one of die, tower, pyramid, clump");
@@ -363,7 +390,7 @@ void readBuilder(const Node& node, Scene& scene, std::set<std::string>& names) {
 void checkNoOverlap(const Scene& scene) {
   // Boxes may touch at the start (a stacked tower overlaps by rounding) but not overlap by
   // more than the techniques' own intersection threshold.
-  const double tolerance = TimeOfImpactParams{}.depthTolerance;
+  const double tolerance = kIntersectionDepthTolerance;
   // A body waiting for its launch is immovable until then, and pairs of two immovable bodies
   // are never candidates; so check a copy with every body launched, or a body waiting inside
   // the ground or a wall would first collide when its launch starts inside it.
@@ -400,12 +427,11 @@ std::pair<int, int> lineColumn(const std::string& text, std::size_t offset) {
                    " is not finite (it overflows a double). Fix: write a finite number");
 }
 
-}  // namespace
-
-Scene parseScene(const std::string& text, const std::string& source) {
-  Json root;
+/// The JSON document of a scene's text; a SceneError naming the line and column of a syntax
+/// error, or the place of a number literal too large for a double.
+Json parseJson(const std::string& text, const std::string& source) {
   try {
-    root = Json::parse(text);
+    return Json::parse(text);
   } catch (const Json::parse_error& e) {
     const std::pair<int, int> lc = lineColumn(text, e.byte > 0 ? e.byte - 1 : 0);
     std::string what = e.what();
@@ -433,13 +459,10 @@ Scene parseScene(const std::string& text, const std::string& source) {
     throw SceneError(source + ": malformed JSON: " + std::string(e.what()) +
                      ". Fix: correct the JSON there");
   }
-  Scene scene;
-  scene.source = source;
-  const Node top(root, "", scene.source);
-  top.requireObject("a scene");
-  top.allowKeys(
-      {"description", "gravity", "restitution", "friction", "broad_phase", "ground", "bodies",
-       "builders"});
+}
+
+/// The scene-wide keys: description, gravity (m/s^2), restitution, friction, broad phase.
+void readSettings(const Node& top, Scene& scene) {
   if (top.has("description")) scene.description = top.at("description").string();
   if (top.has("gravity")) scene.world.gravity = top.at("gravity").vec3(kGravityRange);
   if (top.has("restitution")) {
@@ -460,38 +483,57 @@ Scene parseScene(const std::string& text, const std::string& source) {
       b.fail("unknown broad phase \"" + name + "\"", "use one of: " + valid);
     }
   }
+}
+
+/// The "ground" object: height (m), half size (m), half thickness (m) and friction.
+void readGround(const Node& g, Scene& scene, std::set<std::string>& names) {
+  g.requireObject("the ground {\"height\": 0, \"half_size\": 50, \"half_thickness\": 0.5}");
+  g.allowKeys({"height", "half_size", "half_thickness", "friction"});
+  const double height = g.has("height") ? g.at("height").bounded(kCoordinateRange) : 0.0;
+  const double halfSize = g.has("half_size") ? g.at("half_size").positive(kSizeRange) : 50.0;
+  const double halfThickness = g.has("half_thickness") ? g.at("half_thickness").positive(kSizeRange) : 0.5;
+  const int ground = scene.world.addGround(height, halfSize, halfThickness);
+  scene.world.bodies[ground].friction = g.has("friction") ? readFriction(g.at("friction")) : scene.friction;
+  scene.origins.push_back("/ground");
+  names.insert(scene.world.names[ground]);
+}
+
+/// Calls read on each element of the array top/key, if there is one (key: "bodies" or
+/// "builders"); fails when it is not an array. `source` names the scene file in messages.
+template <class Read>
+void forEachIn(const Node& top, const Json& root, const char* key, const std::string& source,
+               Read read) {
+  if (!top.has(key)) return;
+  const Json& array = root.at(key);
+  if (!array.is_array())
+    top.at(key).fail("expected an array of " + std::string(key),
+                     "write \"" + std::string(key) + "\": [ {...}, ... ]");
+  const std::string prefix = top.at(key).path() + "/";
+  for (std::size_t i = 0; i < array.size(); ++i)
+    read(Node(array[i], prefix + std::to_string(i), source));
+}
+
+}  // namespace
+
+Scene parseScene(const std::string& text, const std::string& source) {
+  const Json root = parseJson(text, source);
+  Scene scene;
+  scene.source = source;
+  const Node top(root, "", scene.source);
+  top.requireObject("a scene");
+  top.allowKeys(
+      {"description", "gravity", "restitution", "friction", "broad_phase", "ground", "bodies",
+       "builders"});
+  readSettings(top, scene);
   std::set<std::string> names;
-  if (top.has("ground")) {
-    const Node g = top.at("ground");
-    g.requireObject("the ground {\"height\": 0, \"half_size\": 50, \"half_thickness\": 0.5}");
-    g.allowKeys({"height", "half_size", "half_thickness", "friction"});
-    const double height = g.has("height") ? g.at("height").bounded(kCoordinateRange) : 0.0;
-    const double halfSize = g.has("half_size") ? g.at("half_size").positive(kSizeRange) : 50.0;
-    const double halfThickness = g.has("half_thickness") ? g.at("half_thickness").positive(kSizeRange) : 0.5;
-    const int ground = scene.world.addGround(height, halfSize, halfThickness);
-    scene.world.bodies[ground].friction = g.has("friction") ? readFriction(g.at("friction")) : scene.friction;
-    scene.origins.push_back("/ground");
-    names.insert(scene.world.names[ground]);
-  }
-  if (top.has("bodies")) {
-    const Node list = top.at("bodies");
-    const Json& array = root.at("bodies");
-    if (!array.is_array()) list.fail("expected an array of bodies", "write \"bodies\": [ {...}, ... ]");
-    for (std::size_t i = 0; i < array.size(); ++i)
-    {
-      const Node body(array[i], "/bodies/" + std::to_string(i), scene.source);
-      if (static_cast<int>(scene.world.bodies.size()) >= kMaxBodies)
-        body.fail("more than " + std::to_string(kMaxBodies) + " bodies", "use fewer bodies");
-      readBody(body, scene, names);
-    }
-  }
-  if (top.has("builders")) {
-    const Node list = top.at("builders");
-    const Json& array = root.at("builders");
-    if (!array.is_array()) list.fail("expected an array of builders", "write \"builders\": [ {...}, ... ]");
-    for (std::size_t i = 0; i < array.size(); ++i)
-      readBuilder(Node(array[i], "/builders/" + std::to_string(i), scene.source), scene, names);
-  }
+  if (top.has("ground")) readGround(top.at("ground"), scene, names);
+  forEachIn(top, root, "bodies", scene.source, [&](const Node& body) {
+    if (static_cast<int>(scene.world.bodies.size()) >= kMaxBodies)
+      body.fail("more than " + std::to_string(kMaxBodies) + " bodies", "use fewer bodies");
+    readBody(body, scene, names);
+  });
+  forEachIn(top, root, "builders", scene.source,
+            [&](const Node& builder) { readBuilder(builder, scene, names); });
   if (scene.world.movableCount() == 0)
     top.fail("the scene has no movable body", "add a body to \"bodies\" or a builder to \"builders\"");
   checkNoOverlap(scene);
