@@ -8,7 +8,7 @@
 
 #include "boxsim/collision/broad_phase.hpp"
 #include "boxsim/collision/separating_axis.hpp"
-#include "boxsim/impulse_damped/contact_gathering.hpp"
+#include "boxsim/impulse_damped/predicted_positions.hpp"
 
 namespace boxsim {
 

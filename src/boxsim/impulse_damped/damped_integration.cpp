@@ -96,32 +96,43 @@ StepStats DampedIntegrationStepper::step(World& world, double dt) {
   return stats;
 }
 
-StepStats DampedIntegrationStepper::advance(World& world, double dt) {
-  StepStats stats;
-  // With a profile asked for, each stage's wall-clock time is added to its slot.
-  using Clock = std::chrono::steady_clock;
-  Clock::time_point mark;
-  if (profile_) {
+namespace {
+/// Adds the wall-clock time of each stage of a step to its slot of a profile, if there is one.
+class StageClock {
+ public:
+  explicit StageClock(DampedStepProfile* profile) : profile_(profile) {
+    if (!profile_) return;
     ++profile_->steps;
-    mark = Clock::now();
+    mark_ = Clock::now();
   }
-  const auto lap = [&](double DampedStepProfile::*slot) {
+  /// The time since the last lap (or the start) goes to `slot`.
+  void lap(double DampedStepProfile::*slot) {
     if (!profile_) return;
     const Clock::time_point now = Clock::now();
-    profile_->*slot += std::chrono::duration<double>(now - mark).count();
-    mark = now;
-  };
+    profile_->*slot += std::chrono::duration<double>(now - mark_).count();
+    mark_ = now;
+  }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  DampedStepProfile* profile_;
+  Clock::time_point mark_;
+};
+}  // namespace
+
+StepStats DampedIntegrationStepper::advance(World& world, double dt) {
+  StepStats stats;
+  StageClock clock(profile_);
   const std::size_t n = world.bodies.size();
   if (stable_.size() != n || !params_.useGeometricStability) stable_.assign(n, 0);
   // ℓ before sleeping bodies stand in as immovable, which would hide them from it.
   const double margin = params_.impulse.contactMargin * smallestHalfExtent(world);
-  const bool sleeping = params_.sleep.enabled;
   // The guard comes first: begin already turns sleeping bodies into immovable stand-ins, and
   // their real mass properties must come back whatever happens after.
   const Sleeping::RestoreOnExit restoreOnExit(sleeping_, world);
   // §4.5: with every movable body asleep nothing can happen; the step costs nothing.
   const bool awake = sleeping_.begin(world);
-  lap(&DampedStepProfile::sleeping);
+  clock.lap(&DampedStepProfile::sleeping);
   if (!awake) {
     stats.sleeping = sleeping_.asleepCount();
     stats.contacts = sleeping_.restingContacts();
@@ -129,57 +140,17 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   }
   // Friction's budget is the normal impulse of this step (applyPatchFriction).
   frictionTotals_.clear();
-  // The hooks run only when needed, so with both techniques off the step is A.2 as written.
-  const bool hooked = sleeping || params_.plausibility.enabled;
-  const BeforeCollide collisionHook = [this](World& w, ImpulseContact& c, const CollideCall& call) {
-    sleeping_.beforeCollide(w, c, call);
-    // §4.2: high-velocity collisions only; contacts (RESOLVECONTACTS) are never perturbed.
-    plausibility_.perturb(c, approachSpeed(w, c, call.gravity, call.dt));
-  };
-  const BeforeCollide contactHook = [this](World& w, ImpulseContact& c, const CollideCall& call) {
-    sleeping_.beforeCollide(w, c, call);
-  };
   // Bodies that take part in a contact (or, with dampCollidingBodies, a collision) this step.
-  std::vector<char> touched(world.bodies.size(), 0);
+  std::vector<char> touched(n, 0);
   // The contacts of the step's start, found before the first pass would find them.
   gathering_.beginStep(world, dt, GravityMode::VelocityPlusGravity, margin);
-  lap(&DampedStepProfile::stepContacts);
-  // Islands whose passes changed nothing sit out the rest of the loop (contact_islands.hpp).
-  const bool islands = params_.islandSettling;
-  // DAMPEDINTEGRATION L1: RESOLVECOLLISIONS — positions predicted with gravity, impulses
-  // without; high-speed collisions perturbed (§4.2).
-  // RESOLVECOLLISIONS L1, L5: the passes, each colliding with COLLISION_RESTITUTION and
-  // VELOCITY_NO_GRAVITY.
-  for (int i = 0; i < params_.impulse.collisionIterations; ++i) {
-    const PassResult pass =
-        impulsePass(world, dt, world.restitution, GravityMode::VelocityPlusGravity,
-                    GravityMode::VelocityNoGravity, margin, gathering_, stable_,
-                    params_.dampCollidingBodies ? &touched : nullptr,
-                    hooked ? collisionHook : BeforeCollide{}, &frictionTotals_,
-                    islands ? IslandSettling::Unchanged : IslandSettling::Never);
-    stats.events += pass.impulses;
-    ++stats.passes;
-    // A pass that changed no body leaves the world as it found it: every later collision pass
-    // would repeat it, changing nothing. Stopping here gives the same bits, sooner.
-    if (!pass.changed && params_.stopUnchangedCollisionPasses) break;
-    if (pass.settled) break;
-  }
-  lap(&DampedStepProfile::collisionPasses);
+  clock.lap(&DampedStepProfile::stepContacts);
+  // DAMPEDINTEGRATION L1: RESOLVECOLLISIONS.
+  resolveCollisions(world, dt, margin, touched, stats);
+  clock.lap(&DampedStepProfile::collisionPasses);
   // DAMPEDINTEGRATION L2: RESOLVECONTACTS.
-  // RESOLVECONTACTS L1, L5: the passes, restitution from -1 towards 0, gravity trick.
-  if (ContactIslands* settled = gathering_.islands()) settled->activateAll();
-  const int iterations = params_.impulse.contactIterations;
-  for (int i = 1; i <= iterations; ++i) {
-    const PassResult pass =
-        impulsePass(world, dt, -1.0 + static_cast<double>(i) / iterations,
-                    GravityMode::VelocityPlusGravity, GravityMode::VelocityPlusGravity, margin,
-                    gathering_, stable_, &touched, sleeping ? contactHook : BeforeCollide{},
-                    &frictionTotals_, islands ? IslandSettling::Unapproached : IslandSettling::Never);
-    stats.events += pass.impulses;
-    ++stats.passes;
-    if (pass.settled) break;
-  }
-  lap(&DampedStepProfile::contactPasses);
+  resolveContacts(world, dt, margin, touched, stats);
+  clock.lap(&DampedStepProfile::contactPasses);
   // DAMPEDINTEGRATION L3: IntegrateObjectVelocities (sleeping bodies stand immovable and are
   // skipped).
   integrateVelocities(world, dt);
@@ -190,38 +161,100 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
     // DAMPENOBJECTS L22: without damping, its position update alone.
     predictPositions(world, dt, Vec3::Zero(), params_.impulse.integrator);
   }
-  lap(&DampedStepProfile::velocitiesAndDamping);
-  const double restingMargin = restingContactMargin(world, margin, dt);
-  // DAMPEDINTEGRATION L5: FIXCONTACTCONSTRAINTS; sleeping bodies still stand in as immovable, so
-  // none moves.
-  std::vector<ContactManifold> contacts;
-  // The broad phase of these contacts, from the step's candidates when they cover it.
-  std::vector<std::pair<int, int>> pairs;
-  const bool havePairs = gathering_.stepPairs(world, restingMargin, pairs);
-  if (!params_.fixContactConstraints) {
-    contacts = havePairs ? findContacts(world, restingMargin, pairs)
-                         : findContacts(world, restingMargin);
-  } else {
-    // Nudging moves x alone: the bodies it moved are those whose x changed.
-    std::vector<Vec3> before(n);
-    for (std::size_t i = 0; i < n; ++i) before[i] = world.bodies[i].s.x;
-    // SETGEOMETRICALLYSTABLE, for the next step's COLLIDE L11-L14, needs the contacts after
-    // DAMPEDINTEGRATION L5: those it found, with the pairs of the bodies it nudged found again.
-    if (fixContactConstraints(world, restingMargin, params_.fixContacts, dt, &contacts,
-                              havePairs ? &pairs : nullptr) > 0) {
-      std::vector<char> nudged(n, 0);
-      for (std::size_t i = 0; i < n; ++i)
-        nudged[i] = static_cast<char>(world.bodies[i].s.x != before[i]);
-      contacts = refindContacts(world, restingMargin, contacts, nudged);
-    }
-  }
-  lap(&DampedStepProfile::fixContacts);
+  clock.lap(&DampedStepProfile::velocitiesAndDamping);
+  // DAMPEDINTEGRATION L5: FIXCONTACTCONSTRAINTS, and the contacts after it.
+  const std::vector<ContactManifold> contacts = fixContacts(world, dt, margin);
+  clock.lap(&DampedStepProfile::fixContacts);
   // DAMPEDINTEGRATION L6: SETGEOMETRICALLYSTABLE.
   if (params_.useGeometricStability) {
     stable_ = setGeometricallyStable(world, contacts, params_.geometricStability);
     sleeping_.holdStability(stable_);
   }
-  lap(&DampedStepProfile::stability);
+  clock.lap(&DampedStepProfile::stability);
+  endStep(world, dt, contacts, stats);
+  clock.lap(&DampedStepProfile::sleeping);
+  return stats;
+}
+
+void DampedIntegrationStepper::resolveCollisions(World& world, double dt, double margin,
+                                                 std::vector<char>& touched, StepStats& stats) {
+  // The hook runs only when needed, so with both techniques off the step is A.2 as written.
+  const bool hooked = params_.sleep.enabled || params_.plausibility.enabled;
+  const BeforeCollide hook = [this](World& w, ImpulseContact& c, const CollideCall& call) {
+    sleeping_.beforeCollide(w, c, call);
+    // §4.2: high-velocity collisions only; contacts (RESOLVECONTACTS) are never perturbed.
+    plausibility_.perturb(c, approachSpeed(w, c, call.gravity, call.dt));
+  };
+  // RESOLVECOLLISIONS L1, L5: the passes, each colliding with COLLISION_RESTITUTION and
+  // VELOCITY_NO_GRAVITY, positions predicted with gravity.
+  for (int i = 0; i < params_.impulse.collisionIterations; ++i) {
+    const PassResult pass =
+        impulsePass(world, dt, world.restitution, GravityMode::VelocityPlusGravity,
+                    GravityMode::VelocityNoGravity, margin, gathering_, stable_,
+                    params_.dampCollidingBodies ? &touched : nullptr,
+                    hooked ? hook : BeforeCollide{}, &frictionTotals_,
+                    // Islands whose passes changed nothing sit out the rest of the loop.
+                    params_.islandSettling ? IslandSettling::Unchanged : IslandSettling::Never);
+    stats.events += pass.impulses;
+    ++stats.passes;
+    // A pass that changed no body leaves the world as it found it: every later collision pass
+    // would repeat it, changing nothing. Stopping here gives the same bits, sooner.
+    if (!pass.changed && params_.stopUnchangedCollisionPasses) break;
+    if (pass.settled) break;
+  }
+}
+
+void DampedIntegrationStepper::resolveContacts(World& world, double dt, double margin,
+                                               std::vector<char>& touched, StepStats& stats) {
+  const BeforeCollide hook = [this](World& w, ImpulseContact& c, const CollideCall& call) {
+    sleeping_.beforeCollide(w, c, call);
+  };
+  if (ContactIslands* settled = gathering_.islands()) settled->activateAll();
+  // RESOLVECONTACTS L1, L5: the passes, restitution from -1 towards 0, gravity trick.
+  const int iterations = params_.impulse.contactIterations;
+  for (int i = 1; i <= iterations; ++i) {
+    const PassResult pass = impulsePass(
+        world, dt, -1.0 + static_cast<double>(i) / iterations, GravityMode::VelocityPlusGravity,
+        GravityMode::VelocityPlusGravity, margin, gathering_, stable_, &touched,
+        params_.sleep.enabled ? hook : BeforeCollide{}, &frictionTotals_,
+        params_.islandSettling ? IslandSettling::Unapproached : IslandSettling::Never);
+    stats.events += pass.impulses;
+    ++stats.passes;
+    if (pass.settled) break;
+  }
+}
+
+std::vector<ContactManifold> DampedIntegrationStepper::fixContacts(World& world, double dt,
+                                                                   double margin) {
+  const double restingMargin = restingContactMargin(world, margin, dt);
+  // Sleeping bodies still stand in as immovable, so none moves.
+  std::vector<ContactManifold> contacts;
+  // The broad phase of these contacts, from the step's candidates when they cover it.
+  std::vector<std::pair<int, int>> pairs;
+  const bool havePairs = gathering_.stepPairs(world, restingMargin, pairs);
+  if (!params_.fixContactConstraints)
+    return havePairs ? findContacts(world, restingMargin, pairs)
+                     : findContacts(world, restingMargin);
+  // Nudging moves x alone: the bodies it moved are those whose x changed.
+  const std::size_t n = world.bodies.size();
+  std::vector<Vec3> before(n);
+  for (std::size_t i = 0; i < n; ++i) before[i] = world.bodies[i].s.x;
+  // SETGEOMETRICALLYSTABLE, for the next step's COLLIDE L11-L14, needs the contacts after
+  // DAMPEDINTEGRATION L5: those it found, with the pairs of the bodies it nudged found again.
+  if (fixContactConstraints(world, restingMargin, params_.fixContacts, dt, &contacts,
+                            havePairs ? &pairs : nullptr) > 0) {
+    std::vector<char> nudged(n, 0);
+    for (std::size_t i = 0; i < n; ++i)
+      nudged[i] = static_cast<char>(world.bodies[i].s.x != before[i]);
+    contacts = refindContacts(world, restingMargin, contacts, nudged);
+  }
+  return contacts;
+}
+
+void DampedIntegrationStepper::endStep(World& world, double dt,
+                                       const std::vector<ContactManifold>& contacts,
+                                       StepStats& stats) {
+  const bool sleeping = params_.sleep.enabled;
   // The closest faces of the pairs the narrow phase skipped are recorded as if it had seen
   // them, so a pair that wakes keeps the normal it had (\thesis{§3.3.2}) and waking changes
   // nothing the normal model remembers.
@@ -236,8 +269,6 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
     stats.contacts = static_cast<int>(contacts.size());
   }
   stats.sleeping = sleeping_.asleepCount();
-  lap(&DampedStepProfile::sleeping);
-  return stats;
 }
 
 }  // namespace boxsim

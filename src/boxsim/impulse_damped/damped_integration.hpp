@@ -130,6 +130,22 @@ class DampedIntegrationStepper final : public Stepper {
  private:
   /// \alg{DAMPEDINTEGRATION L1-L6} for dt s, as step() without continuous collisions.
   StepStats advance(World& world, double dt);
+  /// \alg{RESOLVECOLLISIONS} (DAMPEDINTEGRATION L1): the collision passes, with high-speed
+  /// collisions perturbed (§4.2); marks in `touched` (one flag per body) the bodies that take
+  /// part when dampCollidingBodies is on, and counts impulses and passes in `stats`.
+  void resolveCollisions(World& world, double dt, double margin, std::vector<char>& touched,
+                         StepStats& stats);
+  /// \alg{RESOLVECONTACTS} (DAMPEDINTEGRATION L2): the contact passes; marks in `touched` the
+  /// bodies that take part, and counts impulses and passes in `stats`.
+  void resolveContacts(World& world, double dt, double margin, std::vector<char>& touched,
+                       StepStats& stats);
+  /// \alg{FIXCONTACTCONSTRAINTS} (DAMPEDINTEGRATION L5), when on, and the contacts after it
+  /// within the resting-contact margin, for SETGEOMETRICALLYSTABLE and sleeping.
+  std::vector<ContactManifold> fixContacts(World& world, double dt, double margin);
+  /// The end of a step: the normal model's memory and the gathering's step end, sleeping
+  /// (\thesis{§4.5}) decides from `contacts`, and `stats` gets the contact and sleeper counts.
+  void endStep(World& world, double dt, const std::vector<ContactManifold>& contacts,
+               StepStats& stats);
 
   DampedIntegrationParams params_;
   FrictionTotals frictionTotals_;  ///< the step's impulses per contact point, for friction

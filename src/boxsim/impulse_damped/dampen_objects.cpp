@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "boxsim/impulse_damped/impulse_pass.hpp"
+#include "boxsim/impulse_damped/predicted_positions.hpp"
 
 namespace boxsim {
 

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "boxsim/collision/separating_axis.hpp"
 #include "boxsim/core/integrator.hpp"
 #include "boxsim/core/stepper.hpp"
 #include "boxsim/impulse_damped/impulse_params.hpp"
@@ -36,9 +37,9 @@ struct TimewarpParams {
   /// `resolution` of \alg{A.1} (s, > 0): bisection stops when the bracket of a collision time
   /// is narrower than this. 1e-5 s, as the basic colliding technique's time tolerance.
   double resolution = 1e-5;
-  /// m, >= 0: a pair "intersects" when its separating-axis depth exceeds this (as
-  /// TimeOfImpactParams::depthTolerance).
-  double depthTolerance = 1e-9;
+  /// m, >= 0: a pair "intersects" when its separating-axis depth exceeds this (the
+  /// techniques' kIntersectionDepthTolerance, as TimeOfImpactParams::depthTolerance).
+  double depthTolerance = kIntersectionDepthTolerance;
   /// m, > 0: the swept variant's conservative advancement stops when the gap between two
   /// boxes is below this, and takes that instant as their collision time.
   double sweptGap = 1e-5;
