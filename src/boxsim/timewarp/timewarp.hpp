@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "boxsim/core/enum_names.hpp"
 #include "boxsim/core/integrator.hpp"
 #include "boxsim/core/stepper.hpp"
 #include "boxsim/impulse_damped/impulse_params.hpp"
@@ -28,6 +29,13 @@ enum class TimewarpVariant {
 
 /// The method name of a variant: "timewarp_simple", "timewarp_safer", "timewarp_swept".
 std::string timewarpMethodName(TimewarpVariant variant);
+
+/// The method names of the variants.
+inline constexpr EnumNames<TimewarpVariant, 3> kTimewarpMethodNames{{
+    {TimewarpVariant::Simple, "timewarp_simple"},
+    {TimewarpVariant::Safer, "timewarp_safer"},
+    {TimewarpVariant::Swept, "timewarp_swept"},
+}};
 
 /// Parameters of the modified timewarp.
 struct TimewarpParams {
