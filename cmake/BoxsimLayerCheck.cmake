@@ -6,7 +6,7 @@
 # a file may include boxsim headers of its own layer and of the layers below it, never of a
 # layer above. Linking alone cannot enforce this: an upward include of a header that declares
 # only inline code or types links fine. So every `#include "boxsim/..."` of every file of the
-# layer is read, and the build stops naming each file, its line, the include and the rule.
+# layer is read, and the build stops naming each file, the include and the rule.
 #
 # Arguments (-D): LAYER (core, collision, techniques or io), SOURCE_DIR (src/boxsim),
 # STAMP (written when the layer passes), FILES (the layer's files, ';'-separated).
