@@ -2,8 +2,10 @@
 # name of the Debian package that provides it.
 include_guard(GLOBAL)
 
-set(BOXSIM_APT_PACKAGES
-    "cmake g++ make libeigen3-dev libgsl-dev catch2 nlohmann-json3-dev libcli11-dev gnuplot-nox doxygen graphviz libjs-mathjax libbenchmark-dev")
+# The Debian packages, from the one list of them (packages.txt: one a line, '#' comments).
+file(STRINGS ${PROJECT_SOURCE_DIR}/packages.txt BOXSIM_APT_PACKAGES REGEX "^[^#]")
+list(JOIN BOXSIM_APT_PACKAGES " " BOXSIM_APT_PACKAGES)
+set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/packages.txt)
 
 macro(boxsim_require_package name debian_package)
   find_package(${name} ${ARGN} QUIET)

@@ -19,6 +19,7 @@
 #include "boxsim/filtering/trajectory_measures.hpp"
 #include "boxsim/io/scene.hpp"
 #include "boxsim/io/simulate.hpp"
+#include "boxsim/io/trajectory.hpp"
 #include "boxsim/techniques.hpp"
 
 using namespace boxsim;

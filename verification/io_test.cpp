@@ -8,7 +8,7 @@
 #include <fstream>
 
 #include "boxsim/io/atomic_file.hpp"
-#include "boxsim/io/frame_sink.hpp"
+#include "boxsim/core/frame_sink.hpp"
 #include "boxsim/io/scene.hpp"
 #include "boxsim/io/scene_builders.hpp"
 #include "boxsim/io/trajectory.hpp"

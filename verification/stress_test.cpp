@@ -173,16 +173,10 @@ TEST_CASE("A timewarp frame that hits its event limit leaves no body sinking int
   }
 }
 
-// Regression (random stress, damped): under once-per-step gathering a pair of a fast body
-// (moved to its predicted pose) and a slow one (left where it stood) was tested at the plain
-// margin. In the pile of stress seed 103 (dt 1/60 s) a thin slab (ℓ = 6 cm) stands on the
-// ground, a plate (ℓ = 7 cm) on it and a box (ℓ = 25 cm) on the plate: slab and plate are fast
-// (their g Δt² = 2.7 mm exceeds exactReach ℓ), the box slow. Each pass moved the plate down
-// 2.7 mm and left the box, so their contact was never seen: the box kept the velocity −g Δt and
-// FIXCONTACTCONSTRAINTS lifted it back every step (energy and squirm the long stress run
-// flagged). Now a slow body near a moved fast one is moved to its predicted pose for their
-// narrow phase (contact_gathering.hpp), so the box is found on the plate, as every-pass
-// gathering (A.2 as written) finds it, and the first step's contacts stop its fall exactly.
+// Regression (stress seed 103): a slow body near a moved fast one stands at its predicted pose
+// for their narrow phase, so the box on the fast plate is found in both gathering modes and
+// stops in the first step. The story: chapters/impulse_damped/README.md, "Gathering contacts
+// once per step".
 TEST_CASE("Once-per-step gathering finds the contact of a slow box resting on a fast plate",
           "[impulse_damped][stress][regression]") {
   for (const ContactGatheringMode mode :
@@ -198,16 +192,10 @@ TEST_CASE("Once-per-step gathering finds the contact of a slow box resting on a 
   }
 }
 
-// Regression (random stress, damped): \alg{A.2} collides while the bodies stand at their
-// predicted poses, so an impulse was computed with the predicted orientation's inverse inertia
-// I⁻¹(q') while the state keeps the current q. In stress seed 22811 (dt 1/60 s) a 284 kg plate
-// 0.27 m thick spins at 13-20 rad/s (|ω| Δt up to 0.33 rad) and strikes the ground at step 19:
-// the first collision pass took 15.2 kJ from it measured at q' and added 26.0 kJ measured at q,
-// and the plate left at 36.5 m/s after striking at 30.5 m/s, +31 kJ in a step. With every body
-// back at its pose before COLLIDE and the lever arms of the predicted contact kept
-// (contact_gathering.hpp, "Where COLLIDE acts"), each impulse changes the energy by
-// ½ j (1 - e) v⁻ <= 0 and the step stays within the derived energy sources in both gathering
-// modes.
+// Regression (stress seed 22811): COLLIDE acts after the revert with the state's inertia, so
+// each impulse changes the energy by ½ j (1 - e) v⁻ <= 0 and the spinning plate's step stays
+// within the derived energy sources. The story: chapters/impulse_damped/README.md, "The
+// constants of A.2".
 TEST_CASE("A fast-spinning thin plate striking the ground does not leave with more energy",
           "[impulse_damped][stress][regression]") {
   for (const ContactGatheringMode mode :
@@ -225,11 +213,9 @@ TEST_CASE("A fast-spinning thin plate striking the ground does not leave with mo
   }
 }
 
-// Regression (random stress, damped, Δt = 0.1 s): FIXCONTACTCONSTRAINTS stopped nudging a body
-// after 0.1 ℓ, less than the g Δt² = 9.8 cm one step of fall moves it at this Δt. In seed 11943
-// a 13 cm plank under a pile of up to 382 kg sank 15 cm into the ground a little every step; in
-// seeds 16376 and 24094 a fast box driven into the ground was lifted only 0.1 ℓ a step and sank
-// on. The lift may now reach what the step can have carried the body in (fixLiftLimit).
+// Regression (stress seeds 11943, 16376, 24094, Δt = 0.1 s): FIXCONTACTCONSTRAINTS may lift a
+// body as far as the step can have carried it (fixLiftLimit), so none sinks on. The story:
+// chapters/impulse_damped/README.md, "The constants of A.2".
 TEST_CASE("At a large step a body driven into the ground is lifted back out",
           "[impulse_damped][stress][regression]") {
   for (const unsigned long seed : {11943ul, 16376ul, 24094ul}) {

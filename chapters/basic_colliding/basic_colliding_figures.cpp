@@ -14,6 +14,7 @@
 #include "boxsim/io/atomic_file.hpp"
 #include "boxsim/io/scene.hpp"
 #include "boxsim/io/simulate.hpp"
+#include "boxsim/io/trajectory.hpp"
 
 namespace {
 

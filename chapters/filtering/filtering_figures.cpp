@@ -24,6 +24,7 @@
 #include "boxsim/io/atomic_file.hpp"
 #include "boxsim/io/scene.hpp"
 #include "boxsim/io/simulate.hpp"
+#include "boxsim/io/trajectory.hpp"
 #include "boxsim/techniques.hpp"
 
 namespace {

@@ -23,6 +23,7 @@
 #include "boxsim/io/scene.hpp"
 #include "boxsim/io/scene_builders.hpp"
 #include "boxsim/io/simulate.hpp"
+#include "boxsim/io/trajectory.hpp"
 #include "boxsim/techniques.hpp"
 
 namespace {

@@ -1,6 +1,7 @@
 #include "boxsim/techniques.hpp"
 
 #include <stdexcept>
+#include <utility>
 
 #include "boxsim/analytic_lcp/analytic_stepper.hpp"
 #include "boxsim/basic_colliding/basic_colliding.hpp"
@@ -10,53 +11,55 @@
 
 namespace boxsim {
 
+namespace {
+
+/// Throws std::invalid_argument naming the first option given that `method` does not take:
+/// the impulse step's (contact normal, contact gathering) unless `takesImpulseOptions`, and
+/// those of damped integration alone (sleep, continuous collision, plausibility seed).
+void refuseOptions(const std::string& method, const TechniqueOptions& options,
+                   bool takesImpulseOptions) {
+  const std::pair<bool, const char*> notTaken[] = {
+      {!takesImpulseOptions && options.contactNormal.has_value(), "contact normal"},
+      {!takesImpulseOptions && options.contactGathering.has_value(), "contact gathering"},
+      {options.sleep.has_value(), "sleep"},
+      {options.continuousCollision.has_value(), "continuous collision"},
+      {options.plausibilitySeed.has_value(), "plausibility seed"},
+  };
+  for (const auto& [given, option] : notTaken)
+    if (given)
+      throw std::invalid_argument("the method '" + method + "' takes no " + option + " option");
+}
+
+}  // namespace
+
 std::vector<std::string> methodNames() {
   return {"basic_colliding", "analytic", "impulse", "damped", "timewarp_simple", "timewarp_safer",
           "timewarp_swept"};
 }
 
 std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueOptions& options) {
-  const auto refuse = [&](bool given, const char* option) {
-    if (given)
-      throw std::invalid_argument("the method '" + method + "' takes no " + option + " option");
-  };
   if (method == "basic_colliding") {
-    refuse(options.contactNormal.has_value(), "contact normal");
-    refuse(options.contactGathering.has_value(), "contact gathering");
-    refuse(options.sleep.has_value(), "sleep");
-    refuse(options.continuousCollision.has_value(), "continuous collision");
-    refuse(options.plausibilitySeed.has_value(), "plausibility seed");
+    refuseOptions(method, options, /*takesImpulseOptions=*/false);
     BasicCollidingParams params;
     if (options.integrator) params.integrator = *options.integrator;
     return std::make_unique<BasicCollidingStepper>(params);
   }
   if (method == "analytic") {
-    refuse(options.contactNormal.has_value(), "contact normal");
-    refuse(options.contactGathering.has_value(), "contact gathering");
-    refuse(options.sleep.has_value(), "sleep");
-    refuse(options.continuousCollision.has_value(), "continuous collision");
-    refuse(options.plausibilitySeed.has_value(), "plausibility seed");
+    refuseOptions(method, options, /*takesImpulseOptions=*/false);
     AnalyticParams params;
     if (options.integrator) params.loop.integrator = *options.integrator;
     return std::make_unique<AnalyticStepper>(params);
   }
-  for (const TimewarpVariant variant :
-       {TimewarpVariant::Simple, TimewarpVariant::Safer, TimewarpVariant::Swept}) {
-    if (method != timewarpMethodName(variant)) continue;
-    refuse(options.contactNormal.has_value(), "contact normal");
-    refuse(options.contactGathering.has_value(), "contact gathering");
-    refuse(options.sleep.has_value(), "sleep");
-    refuse(options.continuousCollision.has_value(), "continuous collision");
-    refuse(options.plausibilitySeed.has_value(), "plausibility seed");
+  for (const auto& [variant, name] : kTimewarpMethodNames) {
+    if (method != name) continue;
+    refuseOptions(method, options, /*takesImpulseOptions=*/false);
     TimewarpParams params;
     params.variant = variant;
     if (options.integrator) params.integrator = *options.integrator;
     return std::make_unique<TimewarpStepper>(params);
   }
   if (method == "impulse") {
-    refuse(options.sleep.has_value(), "sleep");
-    refuse(options.continuousCollision.has_value(), "continuous collision");
-    refuse(options.plausibilitySeed.has_value(), "plausibility seed");
+    refuseOptions(method, options, /*takesImpulseOptions=*/true);
     ImpulseStepperParams params;
     if (options.contactNormal) params.impulse.normalModel = *options.contactNormal;
     if (options.contactGathering) params.impulse.gathering = *options.contactGathering;

@@ -223,13 +223,7 @@ void requireProblem(const MatX& A, const VecX& b) {
 }  // namespace
 
 std::string lcpLinearSolverName(LcpLinearSolver solver) {
-  switch (solver) {
-    case LcpLinearSolver::CompleteOrthogonal: return "complete_orthogonal";
-    case LcpLinearSolver::Ldlt: return "ldlt";
-    case LcpLinearSolver::IncrementalCholesky: return "incremental_cholesky";
-    case LcpLinearSolver::GaussianElimination: return "gaussian_elimination";
-  }
-  return "unknown";
+  return enumName(kLcpLinearSolverNames, solver);
 }
 
 LcpResult solveContactLcp(const MatX& A, const VecX& b, const LcpParams& params) {

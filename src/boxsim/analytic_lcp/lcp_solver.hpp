@@ -17,6 +17,7 @@
 
 #include <string>
 
+#include "boxsim/core/enum_names.hpp"
 #include "boxsim/core/math.hpp"
 
 namespace boxsim {
@@ -48,6 +49,14 @@ enum class LcpLinearSolver {
 /// The solver's name in scene files and output headers: "incremental_cholesky", "ldlt",
 /// "complete_orthogonal" or "gaussian_elimination".
 std::string lcpLinearSolverName(LcpLinearSolver solver);
+
+/// The names of the linear solvers.
+inline constexpr EnumNames<LcpLinearSolver, 4> kLcpLinearSolverNames{{
+    {LcpLinearSolver::CompleteOrthogonal, "complete_orthogonal"},
+    {LcpLinearSolver::Ldlt, "ldlt"},
+    {LcpLinearSolver::IncrementalCholesky, "incremental_cholesky"},
+    {LcpLinearSolver::GaussianElimination, "gaussian_elimination"},
+}};
 
 /// Parameters of solveContactLcp.
 struct LcpParams {

@@ -16,19 +16,10 @@
 
 namespace boxsim {
 
-std::string broadPhaseName(BroadPhase kind) {
-  switch (kind) {
-    case BroadPhase::AllPairs: return "all_pairs";
-    case BroadPhase::SweepAndPrune: return "sweep_and_prune";
-  }
-  throw std::invalid_argument("broadPhaseName: not a BroadPhase value");
-}
+std::string broadPhaseName(BroadPhase kind) { return enumName(kBroadPhaseNames, kind); }
 
 BroadPhase parseBroadPhase(const std::string& name) {
-  for (BroadPhase kind : {BroadPhase::AllPairs, BroadPhase::SweepAndPrune})
-    if (name == broadPhaseName(kind)) return kind;
-  throw std::invalid_argument("unknown broad phase '" + name +
-                              "'; valid broad phases: all_pairs, sweep_and_prune");
+  return parseEnum(kBroadPhaseNames, name, "broad phase");
 }
 
 void obbBounds(const Obb& box, double margin, Vec3& lo, Vec3& hi) {

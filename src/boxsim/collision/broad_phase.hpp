@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "boxsim/collision/contact.hpp"
+#include "boxsim/core/enum_names.hpp"
 #include "boxsim/core/world.hpp"
 
 namespace boxsim {
@@ -19,6 +20,12 @@ namespace boxsim {
 /// The name of a broad phase in scene files and on the command line: "all_pairs" or
 /// "sweep_and_prune".
 std::string broadPhaseName(BroadPhase kind);
+
+/// The names of the broad phases.
+inline constexpr EnumNames<BroadPhase, 2> kBroadPhaseNames{{
+    {BroadPhase::AllPairs, "all_pairs"},
+    {BroadPhase::SweepAndPrune, "sweep_and_prune"},
+}};
 
 /// The broad phase called `name` ("all_pairs" or "sweep_and_prune", as broadPhaseName gives).
 /// Throws std::invalid_argument, listing the valid names, for any other name.

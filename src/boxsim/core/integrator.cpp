@@ -5,23 +5,11 @@
 namespace boxsim {
 
 std::string integratorName(Integrator integrator) {
-  switch (integrator) {
-    case Integrator::ForwardEuler: return "forward_euler";
-    case Integrator::SemiImplicitEuler: return "semi_implicit_euler";
-    case Integrator::RungeKutta4: return "runge_kutta_4";
-    case Integrator::SplitRotation: return "split_rotation";
-  }
-  return "unknown";
+  return enumName(kIntegratorNames, integrator);
 }
 
 Integrator parseIntegrator(const std::string& name) {
-  if (name == "forward_euler") return Integrator::ForwardEuler;
-  if (name == "semi_implicit_euler") return Integrator::SemiImplicitEuler;
-  if (name == "runge_kutta_4") return Integrator::RungeKutta4;
-  if (name == "split_rotation") return Integrator::SplitRotation;
-  throw std::invalid_argument(
-      "unknown integrator '" + name +
-      "'; use forward_euler, semi_implicit_euler, runge_kutta_4 or split_rotation");
+  return parseEnum(kIntegratorNames, name, "integrator");
 }
 
 void quaternionStep(Quat& q, const Vec3& omega, double dt) {

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "boxsim/core/enum_names.hpp"
 #include "boxsim/core/world.hpp"
 
 namespace boxsim {
@@ -35,6 +36,14 @@ enum class Integrator {
   /// intermediate axis (417 % in 10 s at 60 Hz, core_test.cpp).
   SplitRotation,
 };
+
+/// The names of the integrators.
+inline constexpr EnumNames<Integrator, 4> kIntegratorNames{{
+    {Integrator::ForwardEuler, "forward_euler"},
+    {Integrator::SemiImplicitEuler, "semi_implicit_euler"},
+    {Integrator::RungeKutta4, "runge_kutta_4"},
+    {Integrator::SplitRotation, "split_rotation"},
+}};
 
 /// "forward_euler", "semi_implicit_euler", "runge_kutta_4" or "split_rotation".
 std::string integratorName(Integrator integrator);

@@ -86,4 +86,13 @@ int World::movableCount() const {
   return n;
 }
 
+int addBox(World& world, const std::string& name, const Vec3& halfExtents, const Vec3& centre,
+           const Quat& q) {
+  RigidBody b = RigidBody::box(halfExtents, 1.0);
+  b.s.x = centre;
+  b.s.q = q;
+  b.updateDerived();
+  return world.add(b, name);
+}
+
 }  // namespace boxsim

@@ -92,4 +92,10 @@ class World {
   int movableCount() const;
 };
 
+/// Adds a box of 1 kg named `name` with the given half extents (m) at `centre` (m), turned by
+/// q; returns its index. The building block of the scenes of io/scene_builders.hpp, of the
+/// sticking scenes and of the tests' own.
+int addBox(World& world, const std::string& name, const Vec3& halfExtents, const Vec3& centre,
+           const Quat& q = Quat::Identity());
+
 }  // namespace boxsim

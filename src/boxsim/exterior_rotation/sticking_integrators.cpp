@@ -10,29 +10,18 @@
 namespace boxsim {
 
 std::string stickingMethodName(StickingMethod method) {
-  switch (method) {
-    case StickingMethod::ForwardEuler: return "forward_euler";
-    case StickingMethod::SemiImplicitEuler: return "semi_implicit_euler";
-    case StickingMethod::RungeKutta4ConstantForces: return "rk4_constant_forces";
-    case StickingMethod::RungeKutta4ResolvedForces: return "rk4_resolved_forces";
-    case StickingMethod::ScrewEuler: return "screw_euler";
-    case StickingMethod::ScrewEulerProjected: return "screw_euler_projected";
-  }
-  return "unknown";
+  return enumName(kStickingMethodNames, method);
 }
 
 std::vector<StickingMethod> allStickingMethods() {
-  return {StickingMethod::ForwardEuler,          StickingMethod::SemiImplicitEuler,
-          StickingMethod::RungeKutta4ConstantForces, StickingMethod::RungeKutta4ResolvedForces,
-          StickingMethod::ScrewEuler,            StickingMethod::ScrewEulerProjected};
+  std::vector<StickingMethod> methods;
+  for (const EnumName<StickingMethod>& entry : kStickingMethodNames)
+    methods.push_back(entry.value);
+  return methods;
 }
 
 StickingMethod parseStickingMethod(const std::string& name) {
-  for (const StickingMethod m : allStickingMethods())
-    if (stickingMethodName(m) == name) return m;
-  throw std::invalid_argument("unknown sticking method '" + name +
-                              "'; use forward_euler, semi_implicit_euler, rk4_constant_forces, "
-                              "rk4_resolved_forces, screw_euler or screw_euler_projected");
+  return parseEnum(kStickingMethodNames, name, "sticking method");
 }
 
 namespace {

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "boxsim/core/enum_names.hpp"
 #include "boxsim/exterior_rotation/sticking_forces.hpp"
 
 namespace boxsim {
@@ -46,6 +47,16 @@ enum class StickingMethod {
 /// "forward_euler", "semi_implicit_euler", "rk4_constant_forces", "rk4_resolved_forces",
 /// "screw_euler" or "screw_euler_projected".
 std::string stickingMethodName(StickingMethod method);
+
+/// The names of the methods.
+inline constexpr EnumNames<StickingMethod, 6> kStickingMethodNames{{
+    {StickingMethod::ForwardEuler, "forward_euler"},
+    {StickingMethod::SemiImplicitEuler, "semi_implicit_euler"},
+    {StickingMethod::RungeKutta4ConstantForces, "rk4_constant_forces"},
+    {StickingMethod::RungeKutta4ResolvedForces, "rk4_resolved_forces"},
+    {StickingMethod::ScrewEuler, "screw_euler"},
+    {StickingMethod::ScrewEulerProjected, "screw_euler_projected"},
+}};
 /// Parses the names of stickingMethodName(); throws std::invalid_argument on an unknown name,
 /// listing the valid ones.
 StickingMethod parseStickingMethod(const std::string& name);

@@ -30,8 +30,7 @@
 #include <vector>
 
 #include "boxsim/filtering/orientation_average.hpp"
-#include "boxsim/io/frame_sink.hpp"
-#include "boxsim/io/trajectory.hpp"
+#include "boxsim/core/frame_sink.hpp"
 
 namespace boxsim {
 

@@ -19,8 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "boxsim/io/frame_sink.hpp"
-#include "boxsim/io/trajectory.hpp"
+#include "boxsim/core/frame_sink.hpp"
 
 namespace boxsim {
 

@@ -7,8 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "boxsim/io/frame_sink.hpp"
-#include "boxsim/io/trajectory.hpp"
+#include "boxsim/core/frame_sink.hpp"
 
 namespace boxsim {
 

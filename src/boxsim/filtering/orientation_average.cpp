@@ -7,14 +7,11 @@
 namespace boxsim {
 
 std::string orientationAverageName(OrientationAverage average) {
-  return average == OrientationAverage::Markley ? "markley" : "sign_aligned_mean";
+  return enumName(kOrientationAverageNames, average);
 }
 
 OrientationAverage parseOrientationAverage(const std::string& name) {
-  if (name == "sign_aligned_mean") return OrientationAverage::SignAlignedMean;
-  if (name == "markley") return OrientationAverage::Markley;
-  throw std::invalid_argument("unknown orientation average '" + name +
-                              "'; use sign_aligned_mean or markley");
+  return parseEnum(kOrientationAverageNames, name, "orientation average");
 }
 
 Quat averageOrientations(const Quat* q, std::size_t n, const Quat& reference,

@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <string>
 
+#include "boxsim/core/enum_names.hpp"
 #include "boxsim/core/math.hpp"
 
 namespace boxsim {
@@ -32,6 +33,12 @@ enum class OrientationAverage {
 /// The name of an average as headers and the command line spell it: "sign_aligned_mean",
 /// "markley".
 std::string orientationAverageName(OrientationAverage average);
+
+/// The names of the averages.
+inline constexpr EnumNames<OrientationAverage, 2> kOrientationAverageNames{{
+    {OrientationAverage::SignAlignedMean, "sign_aligned_mean"},
+    {OrientationAverage::Markley, "markley"},
+}};
 
 /// Parses orientationAverageName()'s output; throws std::invalid_argument naming the unknown
 /// text and the known names.

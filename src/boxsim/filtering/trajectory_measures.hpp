@@ -16,7 +16,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "boxsim/io/trajectory.hpp"
+#include "boxsim/core/frame_sink.hpp"
 
 namespace boxsim {
 

@@ -76,18 +76,11 @@ bool ContactGathering::stepPairs(const World& world, double margin,
 }
 
 std::string contactGatheringName(ContactGatheringMode mode) {
-  switch (mode) {
-    case ContactGatheringMode::EveryPass: return "every_pass";
-    case ContactGatheringMode::OncePerStep: return "once_per_step";
-  }
-  return "unknown";
+  return enumName(kContactGatheringNames, mode);
 }
 
 ContactGatheringMode parseContactGathering(const std::string& name) {
-  for (ContactGatheringMode m : {ContactGatheringMode::EveryPass, ContactGatheringMode::OncePerStep})
-    if (contactGatheringName(m) == name) return m;
-  throw std::invalid_argument("unknown contact gathering '" + name +
-                              "'; use every_pass or once_per_step");
+  return parseEnum(kContactGatheringNames, name, "contact gathering");
 }
 
 }  // namespace boxsim

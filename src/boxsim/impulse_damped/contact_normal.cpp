@@ -13,21 +13,11 @@
 namespace boxsim {
 
 std::string contactNormalModelName(ContactNormalModel model) {
-  switch (model) {
-    case ContactNormalModel::SeparatingAxis: return "separating_axis";
-    case ContactNormalModel::PreviousClosestFace: return "previous_closest_face";
-    case ContactNormalModel::SignedDistance: return "signed_distance";
-  }
-  return "unknown";
+  return enumName(kContactNormalModelNames, model);
 }
 
 ContactNormalModel parseContactNormalModel(const std::string& name) {
-  for (ContactNormalModel m : {ContactNormalModel::SeparatingAxis,
-                               ContactNormalModel::PreviousClosestFace,
-                               ContactNormalModel::SignedDistance})
-    if (contactNormalModelName(m) == name) return m;
-  throw std::invalid_argument("unknown contact normal model '" + name +
-                              "'; use separating_axis, previous_closest_face or signed_distance");
+  return parseEnum(kContactNormalModelNames, name, "contact normal model");
 }
 
 double boxSignedDistance(const Obb& box, const Vec3& p, Vec3* gradient) {

@@ -14,6 +14,7 @@
 
 #include <string>
 
+#include "boxsim/core/enum_names.hpp"
 #include "boxsim/core/integrator.hpp"
 
 namespace boxsim {
@@ -33,6 +34,13 @@ enum class ContactNormalModel {
 
 /// "separating_axis", "previous_closest_face" or "signed_distance".
 std::string contactNormalModelName(ContactNormalModel model);
+
+/// The names of the contact normal models.
+inline constexpr EnumNames<ContactNormalModel, 3> kContactNormalModelNames{{
+    {ContactNormalModel::SeparatingAxis, "separating_axis"},
+    {ContactNormalModel::PreviousClosestFace, "previous_closest_face"},
+    {ContactNormalModel::SignedDistance, "signed_distance"},
+}};
 /// Parses the names of contactNormalModelName(); throws std::invalid_argument on others.
 ContactNormalModel parseContactNormalModel(const std::string& name);
 
@@ -46,6 +54,12 @@ enum class ContactGatheringMode {
 
 /// "every_pass" or "once_per_step".
 std::string contactGatheringName(ContactGatheringMode mode);
+
+/// The names of the gathering modes.
+inline constexpr EnumNames<ContactGatheringMode, 2> kContactGatheringNames{{
+    {ContactGatheringMode::EveryPass, "every_pass"},
+    {ContactGatheringMode::OncePerStep, "once_per_step"},
+}};
 /// Parses the names of contactGatheringName(); throws std::invalid_argument on others.
 ContactGatheringMode parseContactGathering(const std::string& name);
 

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "boxsim/core/stepper.hpp"
-#include "boxsim/io/frame_sink.hpp"
+#include "boxsim/core/frame_sink.hpp"
 #include "boxsim/io/trajectory.hpp"
 
 namespace boxsim {

@@ -87,15 +87,6 @@ int addPyramid(World& world, const PyramidSpec& spec, const std::vector<PyramidB
   return added;
 }
 
-int addBox(World& world, const std::string& name, const Vec3& halfExtents, const Vec3& centre,
-           const Quat& q) {
-  RigidBody b = RigidBody::box(halfExtents, 1.0);
-  b.s.x = centre;
-  b.s.q = q;
-  b.updateDerived();
-  return world.add(b, name);
-}
-
 int addOneCornerOver(World& world) {
   addBox(world, "lower", kUnitHalf, Vec3(0.0, 0.5, 0.0));
   addBox(world, "upper", kUnitHalf, Vec3(0.75, 1.5, 0.75));

@@ -80,11 +80,6 @@ int addPyramid(World& world, const PyramidSpec& spec, const std::vector<PyramidB
 /// Adds the clump; returns spec.count.
 int addClump(World& world, const ClumpSpec& spec);
 
-/// Adds a box of 1 kg named `name` with the given half extents (m) at `centre` (m), turned by
-/// q; returns its index. The building block of the scenes below and of the tests' own.
-int addBox(World& world, const std::string& name, const Vec3& halfExtents, const Vec3& centre,
-           const Quat& q = Quat::Identity());
-
 /// \thesis{Fig. 5.3}: a cube "lower" on the ground and a cube "upper" on it, shifted by ¾ of
 /// its size along x and z, so only one of its bottom corners lies over the lower cube: not
 /// geometrically stable. Unit cubes of 1 kg resting on the plane y = 0. Returns 2.

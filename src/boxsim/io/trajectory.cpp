@@ -8,7 +8,7 @@
 #include <utility>
 
 #include "boxsim/io/atomic_file.hpp"
-#include "boxsim/io/frame_sink.hpp"
+#include "boxsim/core/frame_sink.hpp"
 
 namespace boxsim {
 

@@ -24,44 +24,14 @@
 #include <string>
 #include <vector>
 
-#include "boxsim/core/math.hpp"
+#include "boxsim/core/frame_sink.hpp"
 
 namespace boxsim {
-
-class FrameSink;
 
 /// A trajectory file that does not follow the format above. what() reads "FILE:LINE: problem".
 class TrajectoryFormatError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
-};
-
-/// A body as a trajectory file describes it.
-struct TrajectoryBody {
-  std::string name;  ///< unique, no white space
-  Vec3 halfExtents = Vec3::Constant(0.5);  ///< m
-  bool immovable = false;  ///< drawn as scenery, never moves
-};
-
-/// One recorded frame.
-struct TrajectoryFrame {
-  double t = 0.0;          ///< s
-  double kinetic = 0.0;    ///< J
-  double potential = 0.0;  ///< J
-  int contacts = 0;        ///< contact manifolds (touching pairs) at the end of the frame
-  int events = 0;          ///< collision events during the frame (StepStats::events)
-  int bisections = 0;      ///< bisection steps (roll-backs) during the frame
-  std::vector<Vec3> x;     ///< position of each body, m
-  std::vector<Quat> q;     ///< orientation of each body
-};
-
-/// A whole recorded run.
-struct Trajectory {
-  /// Run parameters, written as `# key: value` header lines (scene, method, dt, seed, ...),
-  /// in key order.
-  std::map<std::string, std::string> meta;
-  std::vector<TrajectoryBody> bodies;   ///< in body order, immovable ones included
-  std::vector<TrajectoryFrame> frames;  ///< in time order
 };
 
 /// Formats a trajectory in the file format above (full double precision, round-trippable):

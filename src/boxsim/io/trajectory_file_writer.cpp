@@ -1,5 +1,7 @@
 #include "boxsim/io/trajectory_file_writer.hpp"
 
+#include "boxsim/io/trajectory.hpp"
+
 namespace boxsim {
 
 namespace {

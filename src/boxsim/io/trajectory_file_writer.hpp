@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "boxsim/io/atomic_file.hpp"
-#include "boxsim/io/frame_sink.hpp"
+#include "boxsim/core/frame_sink.hpp"
 
 namespace boxsim {
 

@@ -19,12 +19,7 @@
 namespace boxsim {
 
 std::string timewarpMethodName(TimewarpVariant variant) {
-  switch (variant) {
-    case TimewarpVariant::Simple: return "timewarp_simple";
-    case TimewarpVariant::Safer: return "timewarp_safer";
-    case TimewarpVariant::Swept: return "timewarp_swept";
-  }
-  return "timewarp";
+  return enumName(kTimewarpMethodNames, variant);
 }
 
 namespace {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "boxsim/collision/separating_axis.hpp"
+#include "boxsim/core/enum_names.hpp"
 #include "boxsim/core/integrator.hpp"
 #include "boxsim/core/stepper.hpp"
 #include "boxsim/impulse_damped/impulse_params.hpp"
@@ -29,6 +30,13 @@ enum class TimewarpVariant {
 
 /// The method name of a variant: "timewarp_simple", "timewarp_safer", "timewarp_swept".
 std::string timewarpMethodName(TimewarpVariant variant);
+
+/// The method names of the variants.
+inline constexpr EnumNames<TimewarpVariant, 3> kTimewarpMethodNames{{
+    {TimewarpVariant::Simple, "timewarp_simple"},
+    {TimewarpVariant::Safer, "timewarp_safer"},
+    {TimewarpVariant::Swept, "timewarp_swept"},
+}};
 
 /// Parameters of the modified timewarp.
 struct TimewarpParams {

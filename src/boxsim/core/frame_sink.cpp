@@ -1,4 +1,4 @@
-#include "boxsim/io/frame_sink.hpp"
+#include "boxsim/core/frame_sink.hpp"
 
 namespace boxsim {
 

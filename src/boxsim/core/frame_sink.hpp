@@ -1,5 +1,6 @@
 /// \file
-/// Where recorded frames go, one at a time and in time order: a trajectory file
+/// Recorded trajectories in memory (the file format is io/trajectory.hpp's), and where recorded
+/// frames go, one at a time and in time order: a trajectory file
 /// (TrajectoryFileWriter), memory (TrajectoryCollector), or a filter of \thesis{§5.5} in front
 /// of either. A run streamed through sinks holds one frame plus what its filters need, however
 /// many steps it takes.
@@ -9,9 +10,37 @@
 #include <string>
 #include <vector>
 
-#include "boxsim/io/trajectory.hpp"
+#include "boxsim/core/math.hpp"
 
 namespace boxsim {
+
+/// A body as a trajectory describes it.
+struct TrajectoryBody {
+  std::string name;  ///< unique, no white space
+  Vec3 halfExtents = Vec3::Constant(0.5);  ///< m
+  bool immovable = false;  ///< drawn as scenery, never moves
+};
+
+/// One recorded frame.
+struct TrajectoryFrame {
+  double t = 0.0;          ///< s
+  double kinetic = 0.0;    ///< J
+  double potential = 0.0;  ///< J
+  int contacts = 0;        ///< contact manifolds (touching pairs) at the end of the frame
+  int events = 0;          ///< collision events during the frame (StepStats::events)
+  int bisections = 0;      ///< bisection steps (roll-backs) during the frame
+  std::vector<Vec3> x;     ///< position of each body, m
+  std::vector<Quat> q;     ///< orientation of each body
+};
+
+/// A whole recorded run.
+struct Trajectory {
+  /// Run parameters, written as `# key: value` header lines (scene, method, dt, seed, ...),
+  /// in key order.
+  std::map<std::string, std::string> meta;
+  std::vector<TrajectoryBody> bodies;   ///< in body order, immovable ones included
+  std::vector<TrajectoryFrame> frames;  ///< in time order
+};
 
 /// A consumer of a trajectory, header first, then frame by frame.
 class FrameSink {
