@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "boxsim/io/scene_builders.hpp"
+#include "boxsim/core/world.hpp"
 
 namespace boxsim {
 

@@ -85,6 +85,7 @@ namespace boxsim {
 /// per step.
 class OncePerStepGathering {
  public:
+  /// A gathering with the reach, widening and pair-reach settings of `params`.
   explicit OncePerStepGathering(const ImpulseParams& params);
 
   /// The step's candidates and slow pairs at the current poses (ContactGathering::beginStep),

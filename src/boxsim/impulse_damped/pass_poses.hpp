@@ -26,12 +26,18 @@ class PassPoses {
   /// bitwise the same (no impulse of the passes reached it) its predicted pose does too and is
   /// copied instead of recomputed.
   struct PredictedPose {
-    Vec3 P, L, v, omega;  ///< the key: momenta and velocities at the current pose
+    Vec3 P;               ///< the key: linear momentum at the current pose, kg m/s
+    Vec3 L;               ///< the key: angular momentum at the current pose, kg m²/s
+    Vec3 v;               ///< the key: velocity at the current pose, m/s
+    Vec3 omega;           ///< the key: angular velocity at the current pose, rad/s
     Vec3 x;               ///< m, predicted
     Quat q;               ///< predicted
-    Mat3 R, Iinv;         ///< derived at the predicted pose
-    Vec3 vPredicted, omegaPredicted;  ///< velocities movePredicted leaves (ω = I⁻¹' L)
-    Vec3 lo, hi;          ///< bounds at the predicted pose (obbBounds, margin 0), m
+    Mat3 R;               ///< rotation matrix at the predicted pose
+    Mat3 Iinv;            ///< world inverse inertia at the predicted pose
+    Vec3 vPredicted;      ///< m/s, the velocity movePredicted leaves
+    Vec3 omegaPredicted;  ///< rad/s, the angular velocity it leaves, ω = I⁻¹' L
+    Vec3 lo;              ///< m, lower corner of the bounds at the predicted pose (obbBounds)
+    Vec3 hi;              ///< m, upper corner of those bounds
     /// Identifies this pose (the stamp of a body standing at it); valid only when greater
     /// than the build stamp it is asked with.
     std::uint64_t stamp = 0;
@@ -51,7 +57,9 @@ class PassPoses {
   /// Slow body i stands at its predicted pose (prepare()) for the narrow phase of its pairs
   /// with fast bodies in this pass.
   void standPartner(int i);
+  /// Whether fast body i stands at its predicted pose in this pass (standFast()).
   bool fastAtPredicted(int i) const { return fastAtPredicted_[i] != 0; }
+  /// Whether slow body i stands at its predicted pose in this pass (standPartner()).
   bool partnerAtPredicted(int i) const { return partnerAtPredicted_[i] != 0; }
   /// Whether body i stands at its predicted pose in this pass, as a fast body or a partner.
   bool atPredicted(int i) const { return fastAtPredicted_[i] || partnerAtPredicted_[i]; }
@@ -62,6 +70,7 @@ class PassPoses {
   }
   /// The slow partners standing at their predicted poses in this pass, in the order stood.
   const std::vector<int>& partners() const { return partners_; }
+  /// Body i's predicted pose, as prepare() left it.
   const PredictedPose& predicted(int i) const { return predicted_[i]; }
   /// Body i's box where it stands in this pass: at its predicted pose (atPredicted), moved
   /// there or not, else where it is.

@@ -25,7 +25,8 @@ namespace boxsim {
 /// is about a kilobyte, and most pairs of a pile stop here): its bodies and how near its points
 /// can come.
 struct PairReach {
-  int a, b;              ///< body indices, a < b
+  int a;                 ///< body index, a < b
+  int b;                 ///< body index
   int count;             ///< its points
   double deepest = 0.0;  ///< m, the largest depth of its points
   double leverA = 0.0;   ///< m, the largest |r_a| of its points

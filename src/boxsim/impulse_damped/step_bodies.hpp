@@ -37,7 +37,8 @@ struct StepBodies {
   std::vector<char> fast;
   std::vector<double> halfDiagonal;  ///< m, |h|, the ρ of passReach
   std::vector<double> slowReach;     ///< m, ImpulseParams::exactReach ℓ: the slow bodies' bar
-  std::vector<Vec3> lo, hi;          ///< m, bounds at the current poses (obbBounds, margin 0)
+  std::vector<Vec3> lo;              ///< m, lower corners of the bounds at the current poses
+  std::vector<Vec3> hi;              ///< m, upper corners of those bounds (obbBounds, margin 0)
   std::vector<Vec3> passVelocity;    ///< m/s, v' of this pass: v + g Δt when movable
   std::vector<double> passTurn;      ///< m, Δt |ω| ρ of this pass
   std::vector<double> passSpin;      ///< rad/s, |ω| of this pass

@@ -32,9 +32,10 @@ class StepCandidates {
     int b;                      ///< body index
     SeparatingAxisResult axis;  ///< kind and indices of the last test's axis
     bool apart;                 ///< the last test found no contact within the margin
-    /// The poses (PassPoses::stamp) a and b stood at in the pass that last looked at the pair;
-    /// 0: never looked at. When both are the same in a later pass, so is the answer.
-    std::uint64_t stampA = 0, stampB = 0;
+    /// The pose (PassPoses::stamp) a stood at in the pass that last looked at the pair; 0:
+    /// never looked at. When a's and b's are the same in a later pass, so is the answer.
+    std::uint64_t stampA = 0;
+    std::uint64_t stampB = 0;  ///< the same for b
     /// The manifold found then (index into the gathering's list), or -1: no contact within
     /// the margin.
     int manifold = -1;
