@@ -73,3 +73,11 @@ function(boxsimPlacesByFile places filesOut linesOut)
   set(${filesOut} "${files}" PARENT_SCOPE)
   set(${linesOut} "${lineLists}" PARENT_SCOPE)
 endfunction()
+
+# Appends `file` to the list variable `listVariable` when `content` (the file's text) has a
+# Doxygen \file comment, that is when Doxygen makes a page of the file that a link can name.
+function(boxsimNoteDocumented file content listVariable)
+  if(content MATCHES "(///|//!|/\\*\\*|/\\*!)[ \t]*(\\\\|@)file")
+    set(${listVariable} ${${listVariable}} "${file}" PARENT_SCOPE)
+  endif()
+endfunction()
