@@ -89,8 +89,8 @@ RestingRun restingRun(const Trajectory& raw, double t0, double t1) {
   return r;
 }
 
-/// GSL's centred moving mean of `values` over ±h samples, truncated at the ends: what the box
-/// filter computed offline before it was streamed.
+/// GSL's centred moving mean of `values` over ±h samples, truncated at the ends: an independent
+/// reference for the box filter's positions.
 std::vector<double> gslMovingMean(const std::vector<double>& values, std::size_t h) {
   std::vector<double> out(values.size());
   gsl_movstat_workspace* workspace = gsl_movstat_alloc2(h, h);
@@ -147,7 +147,7 @@ TEST_CASE("The box filter returns a motion linear in time unchanged away from th
         worstX = std::max(worstX, (box.frames[k].x[1] - raw.frames[k].x[1]).norm());
         worstAngle = std::max(worstAngle, rotationAngle(box.frames[k].q[1], raw.frames[k].q[1]));
       }
-      // Rounding: GSL's running mean carries a few ulp of |x| (< 10 m) per update.
+      // Rounding: a sum of up to 11 positions (|x| < 10 m) carries a few ulp of 10 m.
       CHECK(worstX < 1e-12);
       CHECK(worstAngle < 1e-12);
     }
@@ -377,18 +377,15 @@ TEST_CASE("The causal filters agree with the offline ones: envelope exactly, box
     const Trajectory box = boxFilter(raw, p);
     CausalBoxFilter causalBox(raw.bodies, p);
     CHECK(causalBox.lag() == h);
-    double worstX = 0.0;
     for (std::size_t k = 0; k < raw.frames.size(); ++k) {
       const TrajectoryFrame shown = causalBox.push(raw.frames[k]);
       CHECK(shown.t == raw.frames[k].t);
       if (k < static_cast<std::size_t>(h)) continue;
       const TrajectoryFrame& centred = box.frames[k - h];
-      // Orientation: the same samples, order and reference: bit for bit. Position: plain sum
-      // against GSL's running mean, a few ulp of the 2 m height.
+      // The same samples, order and sign reference: bit for bit.
       CHECK(shown.q[1].coeffs() == centred.q[1].coeffs());
-      worstX = std::max(worstX, (shown.x[1] - centred.x[1]).norm());
+      CHECK(shown.x[1] == centred.x[1]);
     }
-    CHECK(worstX < 1e-13);
   }
 }
 
@@ -454,7 +451,7 @@ TEST_CASE("Filtering is deterministic", "[filtering][determinism]") {
   }
 }
 
-TEST_CASE("The streamed box filter gives GSL's moving mean bit for bit, frame k once frame k + H "
+TEST_CASE("The streamed box filter gives GSL's moving mean to rounding, frame k once frame k + H "
           "has come in",
           "[filtering][reference]") {
   const Trajectory& raw = chatteringDie();
@@ -476,10 +473,15 @@ TEST_CASE("The streamed box filter gives GSL's moving mean bit for bit, frame k 
       std::vector<double> series;
       for (const TrajectoryFrame& f : raw.frames) series.push_back(f.x[1][c]);
       const std::vector<double> mean = gslMovingMean(series, static_cast<std::size_t>(h));
-      std::size_t differing = 0;
+      // GSL keeps a running mean, updated frame by frame over the whole run; the filter sums
+      // each window afresh. Both round at a few ulp of the die's coordinates (|x| < 4 m,
+      // ulp 4.4e-16 m) per operation; over the run's frames the running mean's error is a
+      // random walk of a few hundred steps. 1e-12 m bounds both by far and is a millionth of
+      // anything visible.
+      double worst = 0.0;
       for (std::size_t k = 0; k < mean.size(); ++k)
-        differing += out.trajectory().frames[k].x[1][c] != mean[k] ? 1 : 0;
-      CHECK(differing == 0);
+        worst = std::max(worst, std::abs(out.trajectory().frames[k].x[1][c] - mean[k]));
+      CHECK(worst < 1e-12);
     }
   }
 }

@@ -2,6 +2,8 @@
 /// Number formatting shared by every output file; the order of a patch outline.
 #include <charconv>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <utility>
 
 #include "boxsim/core/math.hpp"
@@ -10,8 +12,18 @@ namespace boxsim {
 
 std::string shortestText(double value) {
   char buffer[32];
+#if defined(__cpp_lib_to_chars)
   const std::to_chars_result r = std::to_chars(buffer, buffer + sizeof buffer, value);
   return std::string(buffer, r.ptr);
+#else
+  // A C++ library without std::to_chars for doubles (Emscripten's libc++, for the browser
+  // demo): the fewest %g digits that read back as the same double. The same digits, though
+  // large and small numbers may come in exponent form where to_chars writes them out.
+  for (int digits = 1;; ++digits) {
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+    if (digits == 17 || std::strtod(buffer, nullptr) == value || std::isnan(value)) return buffer;
+  }
+#endif
 }
 
 std::array<int, 4> counterClockwiseOrder(const std::array<Eigen::Vector2d, 4>& q, int count) {

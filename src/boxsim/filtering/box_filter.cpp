@@ -1,9 +1,7 @@
 #include "boxsim/filtering/box_filter.hpp"
 
-#include <gsl/gsl_movstat.h>
-
 #include <algorithm>
-#include <memory>
+#include <deque>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -27,40 +25,25 @@ std::map<std::string, std::string> boxFilterMeta(std::map<std::string, std::stri
   meta["filter"] = previous.empty() ? "box" : previous + ", then box";
   meta["box_half_width"] = std::to_string(params.halfWidth);
   meta["box_orientation_average"] = orientationAverageName(params.orientationAverage);
-  meta["box_ends"] = "truncated windows (GSL_MOVSTAT_END_TRUNCATE); energies and counters as recorded";
+  meta["box_ends"] = "truncated windows; energies and counters as recorded";
   return meta;
 }
 
+/// The mean position of body `b` over the frames window[from] … window[to] (a sum in frame
+/// order, then one division), and their orientations in `q`, for averageOrientations(). Every
+/// form of the box filter averages through it, so they agree bit for bit.
+Vec3 windowMean(const std::deque<TrajectoryFrame>& window, std::size_t from, std::size_t to,
+                std::size_t b, std::vector<Quat>& q) {
+  q.resize(to - from + 1);
+  Vec3 sum = Vec3::Zero();
+  for (std::size_t i = from; i <= to; ++i) {
+    sum += window[i].x[b];
+    q[i - from] = window[i].q[b];
+  }
+  return sum / static_cast<double>(to - from + 1);
+}
+
 }  // namespace
-
-/// GSL's moving-mean accumulators, one per coordinate of every movable body, each in a
-/// workspace of its own (gsl_movstat_alloc_with_size() sizes the accumulator's state).
-struct BoxFilterStage::Accumulators {
-  /// Frees a GSL workspace. A member, not in the file's anonymous namespace: a type of
-  /// internal linkage in a field of this externally visible class would draw
-  /// -Wsubobject-linkage.
-  struct WorkspaceFree {
-    void operator()(gsl_movstat_workspace* w) const { gsl_movstat_free(w); }
-  };
-  std::vector<std::unique_ptr<gsl_movstat_workspace, WorkspaceFree>> workspaces;
-
-  Accumulators(std::size_t count, std::size_t h) {
-    const gsl_movstat_accum* mean = gsl_movstat_accum_mean;
-    for (std::size_t i = 0; i < count; ++i) {
-      workspaces.emplace_back(gsl_movstat_alloc_with_size(mean->size(2 * h + 1), h, h));
-      gsl_movstat_workspace* w = workspaces.back().get();
-      if (w == nullptr) throw std::runtime_error("box filter: GSL could not allocate its workspace");
-      mean->init(w->K, w->state);
-    }
-  }
-  void insert(std::size_t i, double x) { gsl_movstat_accum_mean->insert(x, workspaces[i]->state); }
-  void deleteOldest(std::size_t i) { gsl_movstat_accum_mean->delete_oldest(workspaces[i]->state); }
-  double get(std::size_t i) const {
-    double result = 0.0;
-    gsl_movstat_accum_mean->get(nullptr, &result, workspaces[i]->state);
-    return result;
-  }
-};
 
 void validateBoxFilterParams(const BoxFilterParams& params) {
   if (params.halfWidth < 0)
@@ -81,15 +64,9 @@ BoxFilterStage::BoxFilterStage(const BoxFilterParams& params, FrameSink& next)
   validateBoxFilterParams(params_);
 }
 
-BoxFilterStage::~BoxFilterStage() = default;
-
 void BoxFilterStage::begin(const std::map<std::string, std::string>& meta,
                            const std::vector<TrajectoryBody>& bodies) {
   bodies_ = bodies;
-  const std::size_t movable = static_cast<std::size_t>(
-      std::count_if(bodies.begin(), bodies.end(), [](const TrajectoryBody& b) { return !b.immovable; }));
-  if (params_.halfWidth > 0)
-    means_ = std::make_unique<Accumulators>(3 * movable, static_cast<std::size_t>(params_.halfWidth));
   next_.begin(boxFilterMeta(meta, params_), bodies);
 }
 
@@ -100,11 +77,7 @@ void BoxFilterStage::push(const TrajectoryFrame& frame) {
     next_.push(frame);
     return;
   }
-  // gsl_movstat_apply_accum's main loop: insert sample i, then read the mean of sample i − H.
-  std::size_t a = 0;
-  for (std::size_t b = 0; b < bodies_.size(); ++b)
-    if (!bodies_[b].immovable)
-      for (int c = 0; c < 3; ++c) means_->insert(a++, frame.x[b][c]);
+  // Frame k − H is complete once frame k is in.
   window_.push_back(frame);
   if (window_.size() > static_cast<std::size_t>(2 * h + 1)) window_.pop_front();
   ++received_;
@@ -113,29 +86,21 @@ void BoxFilterStage::push(const TrajectoryFrame& frame) {
 
 void BoxFilterStage::finish() {
   const long h = params_.halfWidth;
-  // gsl_movstat_apply_accum's end for GSL_MOVSTAT_END_TRUNCATE: the windows of the last H
-  // samples shrink, losing their oldest sample while it lies more than H before them.
-  for (long k = std::max(received_ - h, 0L); h > 0 && k < received_; ++k) {
-    if (k - h > 0)
-      for (std::size_t a = 0; a < means_->workspaces.size(); ++a) means_->deleteOldest(a);
-    emit(k);
-  }
+  // The last H frames: their windows are truncated at the end of the run.
+  for (long k = std::max(received_ - h, 0L); h > 0 && k < received_; ++k) emit(k);
   next_.finish();
 }
 
 void BoxFilterStage::emit(long k) {
   const long h = params_.halfWidth;
   const long first = received_ - static_cast<long>(window_.size());  // frame index of window_[0]
-  const long lo = std::max(k - h, 0L);
-  const long hi = std::min(k + h, received_ - 1);
+  const auto lo = static_cast<std::size_t>(std::max(k - h, 0L) - first);
+  const auto hi = static_cast<std::size_t>(std::min(k + h, received_ - 1) - first);
   TrajectoryFrame out = window_[static_cast<std::size_t>(k - first)];
-  std::vector<Quat> q(static_cast<std::size_t>(hi - lo + 1));
-  std::size_t a = 0;
+  std::vector<Quat> q;
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
     if (bodies_[b].immovable) continue;
-    for (int c = 0; c < 3; ++c) out.x[b][c] = means_->get(a++);
-    for (long j = lo; j <= hi; ++j)
-      q[static_cast<std::size_t>(j - lo)] = window_[static_cast<std::size_t>(j - first)].q[b];
+    out.x[b] = windowMean(window_, lo, hi, b, q);
     // The centre frame is the sign reference, as in boxFilter().
     out.q[b] = averageOrientations(q.data(), q.size(), out.q[b], params_.orientationAverage);
   }
@@ -158,15 +123,10 @@ TrajectoryFrame CausalBoxFilter::push(const TrajectoryFrame& newest) {
   const std::size_t reference = s - 1 >= h ? s - 1 - h : 0;
 
   TrajectoryFrame display = newest;
-  std::vector<Quat> q(s);
+  std::vector<Quat> q;
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
     if (bodies_[b].immovable) continue;
-    Vec3 sum = Vec3::Zero();
-    for (std::size_t i = 0; i < s; ++i) {
-      sum += window_[i].x[b];
-      q[i] = window_[i].q[b];
-    }
-    display.x[b] = sum / static_cast<double>(s);
+    display.x[b] = windowMean(window_, 0, s - 1, b, q);
     display.q[b] = averageOrientations(q.data(), s, q[reference], params_.orientationAverage);
   }
   return display;

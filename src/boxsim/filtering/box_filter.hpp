@@ -25,7 +25,6 @@
 
 #include <deque>
 #include <map>
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -49,9 +48,10 @@ void validateBoxFilterParams(const BoxFilterParams& params);
 
 /// The run `trajectory` box-filtered offline (\thesis{§5.5}), window centred on each frame.
 ///
-/// Positions go through GSL's moving-window mean (gsl_movstat_mean) per body and coordinate.
-/// Ends: GSL_MOVSTAT_END_TRUNCATE, so near the first and the last frame the window holds only
-/// the frames that exist (frame 0 averages frames 0 … H). A body already at rest there is
+/// A position is the mean of the window's positions: their sum in frame order, divided by
+/// their number. (GSL's moving mean, gsl_movstat_mean, is the tests' reference; it agrees to
+/// rounding.) Ends: truncated windows, so near the first and the last frame the window holds
+/// only the frames that exist (frame 0 averages frames 0 … H). A body already at rest there is
 /// unaffected; a body moving at the start or the end of the run is drawn up to H/2 frames of
 /// its motion towards the inside of the run at the first and last frames. Away from the ends
 /// (H ≤ k < n − H) a motion linear in time passes unchanged up to rounding. Orientations use
@@ -67,17 +67,13 @@ Trajectory boxFilter(const Trajectory& trajectory, const BoxFilterParams& params
 
 /// boxFilter() as a stage of a streamed run: frames come in one at a time, and frame k goes on
 /// to `next` once frame k + H has come in (the last H frames in finish()), each equal bit for
-/// bit to boxFilter()'s frame k. Positions go through GSL's moving-mean accumulator
-/// (gsl_movstat_accum_mean), driven in the order gsl_movstat_mean() drives it with
-/// GSL_MOVSTAT_END_TRUNCATE; orientations are averaged over the same truncated windows. It
-/// holds the last 2H + 1 frames and one accumulator of 2H + 1 samples per coordinate of every
-/// movable body, however many frames pass.
+/// bit to boxFilter()'s frame k (boxFilter() is this stage fed a whole run). It holds the last
+/// 2H + 1 frames, however many frames pass.
 class BoxFilterStage final : public FrameSink {
  public:
   /// A stage in front of `next` (which must outlive it).
   /// \throws std::invalid_argument for bad parameters (validateBoxFilterParams()).
   BoxFilterStage(const BoxFilterParams& params, FrameSink& next);
-  ~BoxFilterStage() override;
   /// Begins `next` with `meta` plus the filter's header lines (as boxFilter() adds them).
   void begin(const std::map<std::string, std::string>& meta,
              const std::vector<TrajectoryBody>& bodies) override;
@@ -88,11 +84,9 @@ class BoxFilterStage final : public FrameSink {
   void finish() override;
 
  private:
-  struct Accumulators;
   BoxFilterParams params_;
   FrameSink& next_;
   std::vector<TrajectoryBody> bodies_;
-  std::unique_ptr<Accumulators> means_;  // one moving mean per coordinate of a movable body
   std::deque<TrajectoryFrame> window_;   // the last 2H + 1 frames, oldest first
   long received_ = 0;                    // frames pushed so far
 
@@ -105,8 +99,8 @@ class BoxFilterStage final : public FrameSink {
 /// boxFilter()'s frame k − H: the display lags by H frames. Before that (k < 2H) it averages
 /// frames 0 … k; for H ≤ k < 2H that is still boxFilter()'s truncated frame k − H.
 /// Orientations are averaged with frame max(0, k − H) as the sign reference, exactly as
-/// boxFilter() does for the frame it matches, so those agree bit for bit; positions are plain
-/// sums here and GSL's running mean there, equal up to rounding.
+/// boxFilter() does for the frame it matches; positions are the same sums in the same order:
+/// the two agree bit for bit.
 class CausalBoxFilter {
  public:
   /// A filter for the bodies `bodies` (immovable ones pass unchanged).

@@ -239,8 +239,8 @@ struct PlausibilityParams {
   /// run with perturbation is an explicit choice. The seed is written into output headers
   /// either way.
   bool enabled = false;
-  /// Seed of the stepper's gsl_rng_mt19937 generator. The same seed gives bit-identical runs.
-  /// GSL maps seed 0 to the generator's default seed 4357, so 0 and 4357 give the same stream.
+  /// Seed of the stepper's Mersenne Twister (UniformRandom, core/random.hpp). The same seed
+  /// gives bit-identical runs; 0 and 4357 give the same stream, as they did with GSL's.
   /// 1: a fixed default, so a run that turns perturbation on without a seed is reproducible.
   unsigned long seed = 1;
   /// m/s: only collisions whose bodies approach faster than this along the normal are

@@ -4,35 +4,17 @@
 
 #include <algorithm>
 #include <cmath>
-#include <new>
 #include <stdexcept>
-#include <utility>
 
 namespace boxsim {
 
 VisualPlausibility::VisualPlausibility(const PlausibilityParams& params)
-    : params_(params), rng_(gsl_rng_alloc(gsl_rng_mt19937)) {
+    : params_(params), random_(params.seed) {
   if (!std::isfinite(params.speedThreshold) || params.speedThreshold < 0.0)
     throw std::invalid_argument(
         "plausibility: the speed threshold must be a finite number >= 0 m/s");
   if (!std::isfinite(params.maxAngleDeg) || params.maxAngleDeg < 0.0 || params.maxAngleDeg > 180.0)
     throw std::invalid_argument("plausibility: the largest angle must be in [0, 180] degrees");
-  if (!rng_) throw std::bad_alloc();
-  gsl_rng_set(rng_.get(), params.seed);
-}
-
-VisualPlausibility::VisualPlausibility(const VisualPlausibility& other)
-    : params_(other.params_), rng_(gsl_rng_clone(other.rng_.get())),
-      perturbations_(other.perturbations_) {
-  if (!rng_) throw std::bad_alloc();
-}
-
-VisualPlausibility& VisualPlausibility::operator=(const VisualPlausibility& other) {
-  if (this != &other) {
-    VisualPlausibility copy(other);
-    *this = std::move(copy);
-  }
-  return *this;
 }
 
 bool VisualPlausibility::perturb(ImpulseContact& contact, double approachSpeed) {
@@ -49,9 +31,9 @@ bool VisualPlausibility::perturb(ImpulseContact& contact, double approachSpeed) 
   const Vec3 u = n.cross(t);
   // Uniform over the cap of half-angle θmax: cos θ uniform in [cos θmax, 1], azimuth uniform.
   const double cosMax = std::cos(params_.maxAngleDeg * kPi / 180.0);
-  const double cosTheta = 1.0 - gsl_rng_uniform(rng_.get()) * (1.0 - cosMax);
+  const double cosTheta = 1.0 - random_.next() * (1.0 - cosMax);
   const double sinTheta = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta));
-  const double phi = 2.0 * kPi * gsl_rng_uniform(rng_.get());
+  const double phi = 2.0 * kPi * random_.next();
   contact.normal = (cosTheta * n + sinTheta * (std::cos(phi) * t + std::sin(phi) * u)).normalized();
   ++perturbations_;
   return true;

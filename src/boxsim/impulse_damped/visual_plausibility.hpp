@@ -5,14 +5,11 @@
 /// mechanical, as a die that lands on an edge does not bounce straight up. The thesis adds it to
 /// high-velocity collisions only, since randomness in slow collisions and contacts would keep
 /// bodies from coming to rest. Here the normal of such a collision is turned by a small random
-/// rotation drawn from a seeded GSL Mersenne Twister, so a run is reproduced exactly by its
-/// seed.
+/// rotation drawn from a seeded Mersenne Twister (core/random.hpp), so a run is reproduced
+/// exactly by its seed.
 #pragma once
 
-#include <gsl/gsl_rng.h>
-
-#include <memory>
-
+#include "boxsim/core/random.hpp"
 #include "boxsim/impulse_damped/contact_normal.hpp"
 #include "boxsim/impulse_damped/impulse_params.hpp"
 
@@ -22,14 +19,9 @@ namespace boxsim {
 /// Copying copies the generator's state, so a copy continues the same stream.
 class VisualPlausibility {
  public:
-  /// A gsl_rng_mt19937 generator seeded with params.seed. Throws std::invalid_argument when
+  /// A generator seeded with params.seed (UniformRandom). Throws std::invalid_argument when
   /// speedThreshold is negative or maxAngleDeg is outside [0, 180], either not finite.
   explicit VisualPlausibility(const PlausibilityParams& params = {});
-  VisualPlausibility(const VisualPlausibility& other);             ///< copies the state
-  VisualPlausibility& operator=(const VisualPlausibility& other);  ///< copies the state
-  VisualPlausibility(VisualPlausibility&&) noexcept = default;             ///< moves
-  VisualPlausibility& operator=(VisualPlausibility&&) noexcept = default;  ///< moves
-  ~VisualPlausibility() = default;
 
   /// Turns contact.normal (unit, from a to b) by a random rotation of at most maxAngleDeg,
   /// its direction uniform over that spherical cap, when perturbation is enabled and the
@@ -47,11 +39,8 @@ class VisualPlausibility {
   long perturbations() const { return perturbations_; }
 
  private:
-  struct RngFree {
-    void operator()(gsl_rng* rng) const { gsl_rng_free(rng); }
-  };
   PlausibilityParams params_;
-  std::unique_ptr<gsl_rng, RngFree> rng_;
+  UniformRandom random_;
   long perturbations_ = 0;
 };
 

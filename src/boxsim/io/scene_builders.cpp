@@ -1,12 +1,11 @@
 #include "boxsim/io/scene_builders.hpp"
 
-#include <gsl/gsl_rng.h>
-
 #include <algorithm>
 #include <cmath>
-#include <memory>
 #include <stdexcept>
 #include <string>
+
+#include "boxsim/core/random.hpp"
 
 namespace boxsim {
 
@@ -153,9 +152,8 @@ int addClump(World& world, const ClumpSpec& spec) {
   if (!(spec.spacing > spec.size))
     throw std::invalid_argument("clump spacing must exceed the cube size so cubes start apart");
   if (!(spec.spin >= 0.0)) throw std::invalid_argument("clump spin must be >= 0 rad/s");
-  const std::unique_ptr<gsl_rng, void (*)(gsl_rng*)> rng(gsl_rng_alloc(gsl_rng_mt19937), gsl_rng_free);
-  gsl_rng_set(rng.get(), spec.seed);
-  const auto uniformSpin = [&] { return spec.spin * (2.0 * gsl_rng_uniform(rng.get()) - 1.0); };
+  UniformRandom random(spec.seed);
+  const auto uniformSpin = [&] { return spec.spin * (2.0 * random.next() - 1.0); };
   const Eigen::Vector3i n = clumpGrid(spec.count);
   int index = 0;
   for (int i = 0; i < n.x(); ++i)

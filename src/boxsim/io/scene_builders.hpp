@@ -50,7 +50,7 @@ struct PyramidSpec {
 /// velocity towards the origin"; a cube standing on the target does not move). The grid is nx × ny × nz = count with the
 /// three as close to equal as count allows (100 = 5 × 5 × 4, 1000 = 10³). With `spin` > 0 each
 /// cube also spins, every component of its angular velocity drawn uniformly from [−spin, spin]
-/// by GSL's mt19937 seeded with `seed` (the same scene for the same seed), so that a clump
+/// by the Mersenne Twister of core/random.hpp seeded with `seed` (the same scene for the same seed), so that a clump
 /// dropped close to the ground tumbles into a heap instead of landing as one block.
 struct ClumpSpec {
   int count = 100;  ///< number of cubes, >= 1
