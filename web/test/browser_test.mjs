@@ -7,15 +7,9 @@
 //
 // Exits 0 when every check passes, 1 naming the failed ones.
 import { spawnSync } from 'node:child_process';
-import { createServer } from 'node:http';
-import { readFile } from 'node:fs/promises';
-import { extname, join, resolve } from 'node:path';
-import { chromium } from 'playwright-core';
+import { join, resolve } from 'node:path';
+import { launchChromium, option, serve } from './harness.mjs';
 
-const option = (name, fallback) => {
-  const i = process.argv.indexOf(`--${name}`);
-  return i > 0 ? process.argv[i + 1] : fallback;
-};
 const site = resolve(option('site', 'build-web'));
 const digestProgram = resolve(option('digest', 'build/web/web_digest'));
 const screenshot = option('screenshot', join(site, 'demo.png'));
@@ -25,35 +19,15 @@ const check = (ok, what) => {
   if (!ok) failures.push(what);
 };
 
-// A static server for build-web/, on a free port of the loopback.
-const types = { '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript',
-                '.wasm': 'application/wasm', '.png': 'image/png' };
-const server = createServer(async (request, response) => {
-  let path = join(site, decodeURIComponent(new URL(request.url, 'http://x').pathname));
-  if (path.endsWith('/')) path = join(path, 'index.html');
-  try {
-    const body = await readFile(path);
-    response.writeHead(200, { 'Content-Type': types[extname(path)] ?? 'application/octet-stream' });
-    response.end(body);
-  } catch {
-    response.writeHead(404);
-    response.end();
-  }
-});
-await new Promise((done) => server.listen(0, '127.0.0.1', done));
-const url = `http://127.0.0.1:${server.address().port}/`;
+const server = await serve(site);
 
-const browser = await chromium.launch({
-  executablePath: option('chromium', '/usr/bin/chromium'),
-  // WebGL without a GPU: Chromium's software rasteriser.
-  args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
-});
+const browser = await launchChromium();
 try {
   const page = await browser.newPage({ viewport: { width: 960, height: 600 } });
   const errors = [];
   page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
   page.on('pageerror', (e) => errors.push(String(e)));
-  await page.goto(url);
+  await page.goto(server.url);
   await page.waitForFunction(() => window.boxsimPage && window.boxsimPage.time() >= 0, null,
                              { timeout: 60000 });
   const demo = (expression, arg) => page.evaluate(expression, arg);
