@@ -13,7 +13,9 @@ include(CMakePackageConfigHelpers)
 set(BOXSIM_CMAKE_PACKAGE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/boxsim)
 
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/src/boxsim/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/boxsim
-        FILES_MATCHING PATTERN "*.hpp" PATTERN "cli" EXCLUDE)
+        FILES_MATCHING PATTERN "*.hpp" PATTERN "cli" EXCLUDE
+        # The scene reader's JSON helper is internal to io (and needs nlohmann-json's headers).
+        PATTERN "scene_json.hpp" EXCLUDE)
 install(TARGETS boxsim_core boxsim_collision boxsim_techniques boxsim_io boxsim_lib
         EXPORT boxsimTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})

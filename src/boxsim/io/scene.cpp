@@ -5,7 +5,6 @@
 #include <fstream>
 #include <initializer_list>
 #include <limits>
-#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 
@@ -13,180 +12,17 @@
 #include "boxsim/collision/separating_axis.hpp"
 #include "boxsim/core/math.hpp"
 #include "boxsim/io/scene_builders.hpp"
+#include "boxsim/io/scene_json.hpp"
 
 namespace boxsim {
 
 namespace {
 
-using Json = nlohmann::json;
+using namespace scene_json;
+
 /// Most bodies a scene may hold: a bound on memory and on the start-overlap check, far above
 /// the thesis' largest scene (1000 cubes) and the 10 000-cube clump of the benchmarks.
 constexpr int kMaxBodies = 20000;
-
-/// Range of one kind of scene number, with its unit for messages.
-struct Range {
-  double lo;         ///< smallest magnitude allowed (0: none)
-  double hi;         ///< largest magnitude allowed
-  const char* unit;  ///< SI unit, for messages
-};
-// The ranges every number of a scene must lie in. Finite is not enough: the techniques form
-// products such as the inertia m h^2, its inverse, the momenta m v and I w and the squares of
-// lengths in the separating-axis test, and far-out inputs make these underflow to 0 or overflow
-// to infinity (half extents of 1e-200 m give an inertia of 0, an infinite inverse inertia and a
-// NaN state after one step). Within these ranges every such product is a finite, non-zero
-// double with over a hundred orders of magnitude to spare; the techniques' own tolerances are
-// tuned for bodies of centimetres to metres, far inside them.
-constexpr Range kSizeRange{1e-6, 1e6, "m"};      ///< half extents, cube sizes, spacing, ground
-constexpr Range kMassRange{1e-6, 1e6, "kg"};     ///< masses
-constexpr Range kCoordinateRange{0.0, 1e6, "m"};  ///< positions, origins, centres, gaps, height
-constexpr Range kSpeedRange{0.0, 1e6, "m/s"};     ///< velocities and the clump's speed
-constexpr Range kAngularSpeedRange{0.0, 1e6, "rad/s"};  ///< angular velocities
-constexpr Range kGravityRange{0.0, 1e6, "m/s^2"};       ///< gravity components
-
-/// One JSON value with its path, for reading values with errors that say where they were.
-class Node {
- public:
-  Node(const Json& value, std::string path, const std::string& source)
-      : value_(value), path_(std::move(path)), source_(source) {}
-
-  [[noreturn]] void fail(const std::string& problem, const std::string& fix) const {
-    throw SceneError(source_ + ": " + (path_.empty() ? "/" : path_) + ": " + problem +
-                     ". Fix: " + fix);
-  }
-
-  const std::string& path() const { return path_; }
-  bool has(const char* key) const { return value_.contains(key); }
-  Node at(const char* key) const { return Node(value_.at(key), path_ + "/" + key, source_); }
-
-  bool isObject() const { return value_.is_object(); }
-
-  void requireObject(const std::string& what) const {
-    if (!value_.is_object()) fail("expected " + what + " (a JSON object)", "write { ... } here");
-  }
-
-  void allowKeys(std::initializer_list<const char*> known) const {
-    for (auto it = value_.begin(); it != value_.end(); ++it) {
-      const bool ok = std::any_of(known.begin(), known.end(),
-                                  [&](const char* k) { return it.key() == k; });
-      if (ok) continue;
-      std::string list;
-      for (const char* k : known) list += std::string(list.empty() ? "" : ", ") + k;
-      Node(it.value(), path_ + "/" + it.key(), source_)
-          .fail("unknown key \"" + it.key() + "\"", "use one of: " + list);
-    }
-  }
-
-  double number() const {
-    if (!value_.is_number()) fail("expected a number, got " + describe(), "write a number");
-    const double x = value_.get<double>();
-    if (!std::isfinite(x)) fail("the number is not finite", "write a finite number");
-    return x;
-  }
-  /// A number of magnitude at most range.hi (range.lo is not checked: zero is allowed).
-  double bounded(const Range& range) const {
-    const double x = number();
-    if (std::abs(x) > range.hi)
-      fail("must lie within +-" + text(range.hi) + " " + range.unit + " (got " + text(x) + ")",
-           "give a value in that range; scenes are limited to it so that the physics stays "
-           "within double precision");
-    return x;
-  }
-  /// A number in [range.lo, range.hi].
-  double positive(const Range& range) const {
-    const double x = number();
-    if (!(x > 0.0))
-      fail("must be > 0 " + std::string(range.unit) + " (got " + text(x) + ")",
-           "give a positive value");
-    if (x < range.lo || x > range.hi)
-      fail("must lie in [" + text(range.lo) + ", " + text(range.hi) + "] " + range.unit +
-               " (got " + text(x) + ")",
-           "give a value in that range; scenes are limited to it so that the physics stays "
-           "within double precision");
-    return x;
-  }
-  /// A number >= 0, and at most `limit` when one is given.
-  double nonNegative(const char* unit, const Range* limit = nullptr) const {
-    const double x = limit ? bounded(*limit) : number();
-    if (x < 0.0)
-      fail("must be >= 0 " + std::string(unit) + " (got " + text(x) + ")",
-           "give zero or a positive value");
-    return x;
-  }
-  int count() const {
-    const double x = number();
-    if (x < 1.0 || x != std::floor(x) || x > 1e6)
-      fail("must be a whole number from 1 to 1000000 (got " + text(x) + ")",
-           "give a positive whole count");
-    return static_cast<int>(x);
-  }
-  bool boolean() const {
-    if (!value_.is_boolean()) fail("expected true or false, got " + describe(), "write true or false");
-    return value_.get<bool>();
-  }
-  std::string name() const {
-    if (!value_.is_string()) fail("expected a string, got " + describe(), "write a quoted name");
-    const std::string s = value_.get<std::string>();
-    const bool blank = std::any_of(s.begin(), s.end(), [](unsigned char c) { return std::isspace(c); });
-    if (s.empty() || blank) fail("names must be non-empty and free of white space", "use e.g. \"box_1\"");
-    return s;
-  }
-  std::string string() const {
-    if (!value_.is_string()) fail("expected a string, got " + describe(), "write a quoted string");
-    return value_.get<std::string>();
-  }
-  /// [x, y, z] of finite numbers; with a range, each of magnitude at most range->hi.
-  Vec3 vec3(const Range* range = nullptr) const {
-    if (!value_.is_array() || value_.size() != 3)
-      fail("expected an array of 3 numbers, got " + describe(), "write [x, y, z]");
-    Vec3 v;
-    for (int i = 0; i < 3; ++i) {
-      const Node component(value_[i], path_ + "/" + std::to_string(i), source_);
-      v[i] = range ? component.bounded(*range) : component.number();
-    }
-    return v;
-  }
-  Vec3 vec3(const Range& range) const { return vec3(&range); }
-  Vec3 positiveVec3(const Range& range) const {
-    const Vec3 v = vec3();
-    for (int i = 0; i < 3; ++i) {
-      const Node component(value_[i], path_ + "/" + std::to_string(i), source_);
-      if (!(v[i] > 0.0))
-        component.fail("must be > 0 " + std::string(range.unit) + " (got " + text(v[i]) + ")",
-                       "give positive half extents");
-      component.positive(range);
-    }
-    return v;
-  }
-  /// [w, x, y, z], non-zero, normalised.
-  Quat quaternion() const {
-    if (!value_.is_array() || value_.size() != 4)
-      fail("expected an array of 4 numbers [w, x, y, z], got " + describe(), "write [w, x, y, z]");
-    double c[4];
-    for (int i = 0; i < 4; ++i) c[i] = Node(value_[i], path_ + "/" + std::to_string(i), source_).number();
-    Quat q(c[0], c[1], c[2], c[3]);
-    if (q.norm() < 1e-12) fail("the quaternion must not be zero", "give a unit quaternion, e.g. [1, 0, 0, 0]");
-    q.normalize();
-    return q;
-  }
-  Vec3 nonZeroVec3(const char* what) const {
-    const Vec3 v = vec3();
-    if (v.norm() == 0.0) fail(std::string(what) + " must not be the zero vector", "give a direction");
-    return v;
-  }
-
- private:
-  std::string describe() const {
-    std::string d = value_.dump();
-    if (d.size() > 40) d = d.substr(0, 37) + "...";
-    return std::string(value_.type_name()) + " " + d;
-  }
-  // Shortest round-trip text, so that a value just outside a range is not printed as its bound.
-  static std::string text(double x) { return shortestText(x); }
-
-  const Json& value_;
-  std::string path_;
-  const std::string& source_;
-};
 
 Quat readOrientation(const Node& node) {
   node.requireObject(
@@ -405,59 +241,6 @@ void checkNoOverlap(const Scene& scene) {
          << sat.depth << " m at the start. Fix: move them apart (touching is allowed)";
       throw SceneError(os.str());
     }
-  }
-}
-
-/// Line and column (1-based) of a byte offset in text.
-std::pair<int, int> lineColumn(const std::string& text, std::size_t offset) {
-  int line = 1, column = 1;
-  for (std::size_t i = 0; i < offset && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      column = 1;
-    } else {
-      ++column;
-    }
-  }
-  return {line, column};
-}
-
-[[noreturn]] void throwNonFinite(const std::string& place, const std::string& literal) {
-  throw SceneError(place + ": the number " + literal +
-                   " is not finite (it overflows a double). Fix: write a finite number");
-}
-
-/// The JSON document of a scene's text; a SceneError naming the line and column of a syntax
-/// error, or the place of a number literal too large for a double.
-Json parseJson(const std::string& text, const std::string& source) {
-  try {
-    return Json::parse(text);
-  } catch (const Json::parse_error& e) {
-    const std::pair<int, int> lc = lineColumn(text, e.byte > 0 ? e.byte - 1 : 0);
-    std::string what = e.what();
-    const std::size_t colon = what.rfind(": ");
-    if (colon != std::string::npos) what = what.substr(colon + 2);
-    throw SceneError(source + ":" + std::to_string(lc.first) + ":" + std::to_string(lc.second) +
-                     ": malformed JSON: " + what + ". Fix: correct the JSON syntax there");
-  } catch (const Json::out_of_range& e) {
-    // A number literal too large for a double (1e400): nlohmann_json names the literal but not
-    // its place, so find it in the text.
-    const std::string what = e.what();
-    const std::size_t open = what.find("parsing '");
-    std::string where;
-    if (open != std::string::npos) {
-      const std::string literal = what.substr(open + 9, what.find('\'', open + 9) - open - 9);
-      const std::size_t at = text.find(literal);
-      if (!literal.empty() && at != std::string::npos) {
-        const std::pair<int, int> lc = lineColumn(text, at);
-        where = ":" + std::to_string(lc.first) + ":" + std::to_string(lc.second);
-        throwNonFinite(source + where, literal);
-      }
-    }
-    throw SceneError(source + ": malformed JSON: " + what + ". Fix: correct the number it names");
-  } catch (const Json::exception& e) {
-    throw SceneError(source + ": malformed JSON: " + std::string(e.what()) +
-                     ". Fix: correct the JSON there");
   }
 }
 
