@@ -66,22 +66,28 @@ Demo::Demo(const DemoSettings& settings)
     shot.updateDerived();
     world_.addLaunched(shot, "shot" + std::to_string(k), std::numeric_limits<double>::infinity());
   }
-  for (std::size_t i = 0; i < world_.bodies.size(); ++i) {
-    bodies_.push_back({world_.names[i], world_.bodies[i].halfExtents,
-                       static_cast<int>(i) < firstShot_ && world_.bodies[i].immovable});
-    start_.push_back(world_.bodies[i].s.x);
-  }
+  for (const RigidBody& body : world_.bodies) start_.push_back(body.s.x);
   if (settings.filter != "none" && settings.filter != "box" && settings.filter != "envelope")
     throw std::invalid_argument("unknown filter '" + settings.filter + "'; known: none, box, envelope");
-  startFilter();
-  display();
+  recorder_ = std::make_unique<Recorder>(world_, std::map<std::string, std::string>{}, *this);
+  recorder_->capture(world_, time_);
 }
 
-void Demo::startFilter() {
-  boxFilter_.reset();
-  envelopeFilter_.reset();
-  if (settings_.filter == "box") boxFilter_ = std::make_unique<CausalBoxFilter>(bodies_);
-  if (settings_.filter == "envelope") envelopeFilter_ = std::make_unique<CausalEnvelopeFilter>(bodies_);
+void Demo::begin(const std::map<std::string, std::string>&,
+                 const std::vector<TrajectoryBody>& bodies) {
+  if (settings_.filter == "box") boxFilter_ = std::make_unique<CausalBoxFilter>(bodies);
+  if (settings_.filter == "envelope") envelopeFilter_ = std::make_unique<CausalEnvelopeFilter>(bodies);
+}
+
+void Demo::push(const TrajectoryFrame& recorded) {
+  TrajectoryFrame frame = recorded;
+  if (boxFilter_) frame = boxFilter_->push(frame);
+  if (envelopeFilter_) frame = envelopeFilter_->push(frame);
+  poses_.clear();
+  for (std::size_t i = 0; i < frame.x.size(); ++i) {
+    poses_.insert(poses_.end(), frame.x[i].data(), frame.x[i].data() + 3);
+    poses_.insert(poses_.end(), frame.q[i].coeffs().data(), frame.q[i].coeffs().data() + 4);
+  }
 }
 
 int Demo::step() {
@@ -89,7 +95,7 @@ int Demo::step() {
   const StepStats stats = stepper_->step(world_, kDt);
   ++steps_;
   time_ = static_cast<double>(steps_) * kDt;
-  display();
+  recorder_->capture(world_, time_, stats);
   return stats.events;
 }
 
@@ -105,9 +111,6 @@ bool Demo::shoot(const Vec3& from, const Vec3& direction) {
   launch.time = time_;  // launched at the start of the next step
   start_[static_cast<std::size_t>(body)] = from;
   ++shotsFired_;
-  // The filters start again from the next frame, so that no window holds the shot both
-  // parked and fired.
-  startFilter();
   return true;
 }
 
@@ -158,22 +161,6 @@ std::string Demo::stateDigest() const {
   std::string out(16, '0');
   for (int k = 15; k >= 0; --k, hash >>= 4) out[static_cast<std::size_t>(k)] = kHex[hash & 15];
   return out;
-}
-
-void Demo::display() {
-  TrajectoryFrame frame;
-  frame.t = time_;
-  for (const RigidBody& b : world_.bodies) {
-    frame.x.push_back(b.s.x);
-    frame.q.push_back(b.s.q);
-  }
-  if (boxFilter_) frame = boxFilter_->push(frame);
-  if (envelopeFilter_) frame = envelopeFilter_->push(frame);
-  poses_.clear();
-  for (std::size_t i = 0; i < frame.x.size(); ++i) {
-    poses_.insert(poses_.end(), frame.x[i].data(), frame.x[i].data() + 3);
-    poses_.insert(poses_.end(), frame.q[i].coeffs().data(), frame.q[i].coeffs().data() + 4);
-  }
 }
 
 }  // namespace boxsim::web

@@ -16,6 +16,7 @@
 #include "boxsim/core/world.hpp"
 #include "boxsim/filtering/box_filter.hpp"
 #include "boxsim/filtering/envelope_filter.hpp"
+#include "boxsim/io/recorder.hpp"
 
 namespace boxsim::web {
 
@@ -39,8 +40,9 @@ enum BodyFlag : std::uint8_t {
   kGeometricallyStable = 4,  ///< SETGEOMETRICALLYSTABLE (§5.4): drawn dark, as in Fig. 5.6
 };
 
-/// A scene running under a technique. Steps are 1/60 s.
-class Demo {
+/// A scene running under a technique. Steps are 1/60 s. Its Recorder hands every frame to the
+/// demo itself, a FrameSink, which passes it through the display filter into poses().
+class Demo : public FrameSink {
  public:
   /// Shots the page may fire before it must restart the scene.
   static constexpr int kShots = 12;
@@ -69,6 +71,15 @@ class Demo {
   std::vector<std::uint8_t> flags() const;
   /// How far the farthest movable body is from where it started, m (shots not counted).
   double largestDisplacement() const;
+  /// FrameSink: starts the display filter for the recorded bodies (the shots, immovable
+  /// until fired, pass it unfiltered).
+  void begin(const std::map<std::string, std::string>& meta,
+             const std::vector<TrajectoryBody>& bodies) override;
+  /// FrameSink: the frame through the display filter into poses().
+  void push(const TrajectoryFrame& frame) override;
+  /// FrameSink: nothing to finish.
+  void finish() override {}
+
   /// FNV-1a hash (64 bit, as 16 hex digits) of the bytes of every double of every body's
   /// state x, q, P, L: equal digests mean, all but certainly, the same bits.
   std::string stateDigest() const;
@@ -77,7 +88,7 @@ class Demo {
   DemoSettings settings_;
   World world_;
   std::unique_ptr<Stepper> stepper_;
-  std::vector<TrajectoryBody> bodies_;
+  std::unique_ptr<Recorder> recorder_;  ///< frames of the world, to push()
   std::unique_ptr<CausalBoxFilter> boxFilter_;
   std::unique_ptr<CausalEnvelopeFilter> envelopeFilter_;
   std::vector<Vec3> start_;  ///< every body's position at the start
@@ -87,10 +98,7 @@ class Demo {
   double time_ = 0.0;
   std::vector<double> poses_;
 
-  /// (Re)starts the display filter with an empty window.
-  void startFilter();
-  /// Fills poses_ from the world, through the display filter.
-  void display();
+
 };
 
 }  // namespace boxsim::web
