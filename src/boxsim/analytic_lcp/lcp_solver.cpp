@@ -106,7 +106,9 @@ class ClampedFactor {
     for (int j = 0; j < k; ++j) {
       const int col = p + j;
       const double diagonal = L_(col, col);
-      const double r = std::hypot(diagonal, x[j]);
+      // √(d² + x²) as written, not hypot, which C libraries round differently (docs/web.md);
+      // the factor's entries are far from overflow.
+      const double r = std::sqrt(diagonal * diagonal + x[j] * x[j]);
       const double cosine = r / diagonal, sine = x[j] / diagonal;
       L_(col, col) = r;
       for (int i = j + 1; i < k; ++i) {

@@ -433,7 +433,14 @@ double fanIntegral(const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
   const Eigen::Vector2d e = d / length;
   const double h = std::abs(p.x() * e.y() - p.y() * e.x());
   if (h == 0.0) return 0.0;
-  const auto F = [h](double t) { return (t * h * std::hypot(h, t) + h * h * h * std::asinh(t / h)) / 6.0; };
+  // asinh(t / h) = ±log((|t| + √(h² + t²)) / h): the square root and the logarithm, which the C
+  // libraries compute alike (glibc's and musl's log are one implementation), rather than
+  // hypot and asinh, which they round differently now and then (docs/web.md).
+  const auto F = [h](double t) {
+    const double root = std::sqrt(h * h + t * t);
+    const double asinh = std::copysign(std::log((std::abs(t) + root) / h), t);
+    return (t * h * root + h * h * h * asinh) / 6.0;
+  };
   const double tP = p.dot(e);
   return F(tP + length) - F(tP);
 }

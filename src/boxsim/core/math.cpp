@@ -27,12 +27,19 @@ std::string shortestText(double value) {
 }
 
 std::array<int, 4> counterClockwiseOrder(const std::array<Eigen::Vector2d, 4>& q, int count) {
+  // The order of atan2(y, x), from −π up to π, by exact tests instead of the C library's atan2,
+  // whose last bit differs between libraries: first the half plane (y < 0: (−π, 0); y ≥ 0:
+  // [0, π]; y = 0 with x < 0 is π, last), then within a half plane the sign of the cross
+  // product, which is positive when the first point comes first.
+  const auto half = [&](int k) { return q[k].y() < 0.0 ? 0 : (q[k].y() == 0.0 && q[k].x() < 0.0 ? 2 : 1); };
+  const auto before = [&](int a, int b) {
+    if (half(a) != half(b)) return half(a) < half(b);
+    return q[a].x() * q[b].y() - q[a].y() * q[b].x() > 0.0;
+  };
   std::array<int, 4> order{0, 1, 2, 3};
-  std::array<double, 4> angle{};
-  for (int k = 0; k < count; ++k) angle[k] = std::atan2(q[k].y(), q[k].x());
   // Insertion sort of at most four: stable, so equal angles keep their index order.
   for (int i = 1; i < count; ++i)
-    for (int k = i; k > 0 && angle[order[k]] < angle[order[k - 1]]; --k) std::swap(order[k], order[k - 1]);
+    for (int k = i; k > 0 && before(order[k], order[k - 1]); --k) std::swap(order[k], order[k - 1]);
   return order;
 }
 

@@ -130,7 +130,10 @@ void buildRows(FrictionRows& rows, const RigidBody& a, const RigidBody& b, const
 /// from the sums `before` and the rows' velocities `slip` (m/s, rad/s) with inverse mass W.
 void limitByCoulomb(Vec5& total, const Vec5& before, const Vec5& slip, const Mat5& W,
                     const Friction& friction, double N, double radius, bool torsion) {
-  const double load = std::hypot(total(0), total(1), torsion ? total(2) / radius : 0.0);
+  // The norm as written, not the C library's three-argument hypot, which libraries round
+  // differently (docs/web.md); impulses are far from overflow.
+  const double spin = torsion ? total(2) / radius : 0.0;
+  const double load = std::sqrt(total(0) * total(0) + total(1) * total(1) + spin * spin);
   if (load > friction.muStatic * N) {
     total.head<3>() *= load > 0.0 ? friction.muDynamic * N / load : 0.0;
     // Sliding: the couple that stops the tipping under the friction as limited.

@@ -31,8 +31,22 @@ void tiltTowardsYAxis(RigidBody& body, double maxAngle) {
   const Vec3 axis = up.cross(Vec3::UnitY());
   const double sine = axis.norm();
   if (sine < 1e-15) return;
-  const double angle = std::min(std::atan2(sine, up.y()), maxAngle);
-  body.s.q = (Quat(Eigen::AngleAxisd(angle, axis / sine)) * body.s.q).normalized();
+  // The turn, min(θ, maxAngle) about axis / |axis|, θ the angle of up from y, as a quaternion
+  // of its half angle. For θ itself from sin θ and cos θ by the half-angle formulas, so the
+  // step needs only square roots: the C libraries' atan2, sin and cos differ in the last bit
+  // now and then (docs/web.md), and the same scene must give the same bits everywhere.
+  const double radius = std::sqrt(sine * sine + up.y() * up.y());
+  const double cosine = up.y() / radius;
+  double halfCos, halfSin;
+  if (cosine >= std::cos(maxAngle)) {  // θ <= maxAngle: turn by θ, up onto y
+    halfCos = std::sqrt(0.5 * (1.0 + cosine));
+    halfSin = (sine / radius) / (2.0 * halfCos);
+  } else {
+    halfCos = std::cos(0.5 * maxAngle);
+    halfSin = std::sin(0.5 * maxAngle);
+  }
+  const Vec3 v = (halfSin / sine) * axis;
+  body.s.q = (Quat(halfCos, v.x(), v.y(), v.z()) * body.s.q).normalized();
   body.updateDerived();
 }
 
