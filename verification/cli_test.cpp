@@ -292,10 +292,12 @@ TEST_CASE("Technique options reach the stepper and its header, and options a met
   const std::string die = std::string(BOXSIM_SOURCE_DIR) + "/chapters/impulse_damped/scenes/die.json";
   const std::string out = (kDir / "damped.dat").string();
   const Result r = runBoxsim(kDir, "run " + die + " --method damped --duration 0.5 --sleep off "
-                                   "--contact-normal signed_distance --plausibility-seed 42 --out " + out);
+                                   "--contact-normal signed_distance --plausibility-seed 42 --chatter-detection on "
+                                   "--out " + out);
   REQUIRE(r.status == 0);
   const boxsim::Trajectory t = boxsim::readTrajectory(out);
   CHECK(t.meta.at("seed") == "42");
+  CHECK(t.meta.at("chatter_detection") == "on");
   CHECK(t.meta.at("plausibility") == "on");
   CHECK(t.meta.at("sleep") == "off");
   CHECK(t.meta.at("contact_normal") == "signed_distance");
@@ -303,6 +305,9 @@ TEST_CASE("Technique options reach the stepper and its header, and options a met
   const Result basic = runBoxsim(kDir, "run " + die + " --method basic_colliding --sleep off --out " + refused);
   CHECK(basic.status != 0);
   CHECK_THAT(basic.stderrText, Contains("takes no sleep option"));
+  const Result analytic = runBoxsim(kDir, "run " + die + " --method analytic --chatter-detection on --out " + refused);
+  CHECK(analytic.status != 0);
+  CHECK_THAT(analytic.stderrText, Contains("takes no chatter detection option"));
   const Result impulse = runBoxsim(kDir, "run " + die + " --method impulse --integrator forward_euler --out " + refused);
   CHECK(impulse.status != 0);
   CHECK_THAT(impulse.stderrText, Contains("semi_implicit_euler or split_rotation"));

@@ -12,8 +12,11 @@
 #include <vector>
 
 #include "boxsim/collision/separating_axis.hpp"
+#include "boxsim/impulse_damped/chatter_history.hpp"
 #include "boxsim/impulse_damped/damped_integration.hpp"
+#include "boxsim/impulse_damped/dampen_objects.hpp"
 #include "boxsim/impulse_damped/visual_plausibility.hpp"
+#include "boxsim/io/scene.hpp"
 #include "boxsim/io/scene_builders.hpp"
 #include "boxsim/io/simulate.hpp"
 #include "test_worlds.hpp"
@@ -291,6 +294,134 @@ TEST_CASE("A box asleep on an immovable support wakes when the support is made m
   world.bodies[support] = launched;
   stepper.step(world, kDt);
   CHECK(stepper.asleep()[box] == 0);
+}
+
+// --- chatter detected from history (§6.3.1) -------------------------------------------------
+
+namespace {
+
+/// A unit cube (ℓ = 0.5 m, h = √0.75 m) at `x`, rotated by `angle` rad about z, moving at `v`.
+RigidBody cubeAt(const Vec3& x, double angle = 0.0, const Vec3& v = Vec3::Zero()) {
+  RigidBody b = RigidBody::box(Vec3::Constant(0.5), 1.0);
+  b.s.x = x;
+  b.s.q = Quat(Eigen::AngleAxisd(angle, Vec3::UnitZ()));
+  b.updateDerived();
+  b.setVelocity(v);
+  return b;
+}
+
+}  // namespace
+
+TEST_CASE("Chatter history: a window within the envelope, not sinking, its energy not growing, "
+          "chatters, and leaving the envelope, sinking or gathering energy does not",
+          "[impulse_damped][sleeping][chatter]") {
+  // A unit cube: envelope r = 0.05 ℓ = 2.5 cm for the centre, r / h = 0.0289 rad for the turn;
+  // slop 0.001 ℓ = 0.5 mm of sinking; a window of 30 steps; g = 9.81 m/s² down.
+  const Vec3 g(0.0, -9.81, 0.0);
+  const long window = 30;
+  const auto runWith = [&](auto poseAt, auto speedAt) {
+    ChatterHistory history(0.05, 0.001);
+    history.resize(1);
+    for (long k = 0; k < window; ++k) {
+      RigidBody b = cubeAt(Vec3::Zero(), 0.0, Vec3(speedAt(k), 0.0, 0.0));
+      b.s.x = poseAt(k).first;
+      b.s.q = Quat(Eigen::AngleAxisd(poseAt(k).second, Vec3::UnitZ()));
+      b.updateDerived();
+      history.record(0, b, g, window);
+      if (k < window - 1) REQUIRE_FALSE(history.chatters(0));  // not a full window yet
+    }
+    return history.chatters(0);
+  };
+  const auto still = [](long) { return std::pair<Vec3, double>(Vec3::Zero(), 0.0); };
+  const auto steady = [](long) { return 0.01; };  // m/s, a kick that goes nowhere
+  // Held in place with a steady small speed: chatter.
+  CHECK(runWith(still, steady));
+  // Rocking within the envelope (±2 cm, ±0.02 rad) with decaying energy: chatter.
+  CHECK(runWith([](long k) { return std::pair<Vec3, double>(Vec3(k % 2 ? 0.02 : -0.0, 0.0, 0.0),
+                                                            k % 2 ? 0.02 : 0.0); },
+                [](long k) { return 0.1 / (1.0 + k); }));
+  // Drifting 3 cm over the window: beyond the envelope.
+  CHECK_FALSE(runWith([](long k) { return std::pair<Vec3, double>(Vec3(0.001 * k, 0.0, 0.0), 0.0); },
+                      steady));
+  // Turning 0.035 rad: beyond the envelope's 0.0289.
+  CHECK_FALSE(runWith([](long k) { return std::pair<Vec3, double>(Vec3::Zero(), 0.035 * k / 29.0); },
+                      steady));
+  // Sinking 1 mm (twice the slop) while tipping slowly, energy held level by damping: gravity
+  // works on it, not chatter.
+  CHECK_FALSE(runWith([](long k) { return std::pair<Vec3, double>(Vec3(0.0, -0.001 * k / 29.0, 0.0),
+                                                                  0.0); },
+                      steady));
+  // Sinking 0.4 mm, within the slop: a contact settling, still chatter.
+  CHECK(runWith([](long k) { return std::pair<Vec3, double>(Vec3(0.0, -0.0004 * k / 29.0, 0.0), 0.0); },
+                steady));
+  // Gathering energy (a fall beginning): speed growing through the window.
+  CHECK_FALSE(runWith(still, [](long k) { return 0.001 * k; }));
+}
+
+TEST_CASE("Chatter detection puts the clump's chattering cubes to sleep: the heap comes to rest, "
+          "every cube asleep, where sleeping alone leaves it awake for ever",
+          "[impulse_damped][sleeping][chatter][clump]") {
+  // clump100_ground.json (Fig. 6.7 read with the origin on the ground): with sleeping alone,
+  // 15 cubes keep small momenta for ever (impulse_damped_test), so the heap never sleeps.
+  Scene scene =
+      loadScene(std::string(BOXSIM_SOURCE_DIR) + "/chapters/impulse_damped/scenes/clump100_ground.json");
+  World& world = scene.world;
+  DampedIntegrationParams params;
+  params.sleep.chatterDetection = true;
+  DampedIntegrationStepper stepper(params);
+  const int asleepAt = stepUntilAsleep(world, stepper, 10 * 60);
+  INFO("every cube asleep at step " << asleepAt);
+  REQUIRE(asleepAt > 0);
+  // At rest for good: 2 s more without a bit of change, the kinetic energy exactly 0.
+  const WorldState rested = world.saveState();
+  for (int k = 0; k < 2 * 60; ++k) stepper.step(world, kDt);
+  CHECK(world.saveState() == rested);
+  CHECK(world.kineticEnergy() == 0.0);
+  // Put to rest as they chattered, not frozen mid-fall: every cube lies with a face down
+  // (DAMPENOBJECTS' aligned test, 3°) and the heap is the heap of impulse_damped_test (at
+  // least four layers, more compact than a cone of the cubes' volume 4 m high).
+  for (const RigidBody& b : world.bodies)
+    if (!b.immovable) CHECK(isYAxisAligned(b, DampingParams{}.alignedAngleDeg));
+  const boxsim::testing::HeapMeasure heap = boxsim::testing::measureHeap(world, 100.0, 4.0);
+  CHECK(heap.rmsRadius < heap.coneRmsRadius);
+  CHECK(heap.beyondCone <= heap.count / 20);
+  CHECK(heap.top > 3.5);
+}
+
+TEST_CASE("Chatter detection never fires on a box tipping off an edge, a box falling or one "
+          "drifting in space: those runs are bit for bit the runs without it",
+          "[impulse_damped][sleeping][chatter]") {
+  const auto both = [](World world, int steps) {
+    DampedIntegrationParams with;
+    with.sleep.chatterDetection = true;
+    return std::pair<WorldState, WorldState>(run(world, {}, steps), run(world, with, steps));
+  };
+  SECTION("a cube tilted 30° on an edge topples flat") {
+    // Its centre is beyond its edge of support from the start: gravity does work on it all
+    // along (the sinking test).
+    World world = groundWorld();
+    world.add(cubeAt(Vec3(0.0, 0.5 * std::sqrt(2.0) * std::cos(kPi / 12.0), 0.0), kPi / 6.0), "tipping");
+    const auto [without, with] = both(world, 3 * 60);
+    CHECK(with == without);
+    World after = world;
+    after.restoreState(with);
+    CHECK(isYAxisAligned(after.bodies[1], DampingParams{}.alignedAngleDeg));
+  }
+  SECTION("a cube dropped from 2 m lands, bounces and comes to rest exactly still") {
+    World world = groundWorld();
+    world.add(cubeAt(Vec3(0.0, 2.0, 0.0)), "dropped");
+    const auto [without, with] = both(world, 4 * 60);
+    CHECK(with == without);
+  }
+  SECTION("a cube drifting at 1 cm/s in space, nothing to chatter on, keeps its momentum") {
+    World world = boxsim::testing::spaceWorld();
+    world.add(cubeAt(Vec3::Zero(), 0.0, Vec3(0.01, 0.0, 0.0)), "drifting");
+    const auto [without, with] = both(world, 2 * 60);
+    CHECK(with == without);
+    World after = world;
+    after.restoreState(with);
+    CHECK(after.bodies[0].s.P.x() == 0.01);
+  }
 }
 
 // --- visual plausibility (§4.2) ------------------------------------------------------------

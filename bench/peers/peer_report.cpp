@@ -16,8 +16,9 @@ namespace {
 
 constexpr const char* kBoxsim = "boxsim damped";
 /// The boxsim rows the summary and the aims speak of: the thesis' frictionless damped
-/// integration, and the same with the peers' Coulomb friction (the like-for-like row).
-constexpr const char* kBoxsimRows[] = {"boxsim damped", "boxsim damped μ"};
+/// integration, the same with the peers' Coulomb friction (the like-for-like row), and with
+/// chatter detected from history (§6.3.1).
+constexpr const char* kBoxsimRows[] = {"boxsim damped", "boxsim damped μ", "boxsim damped chatter"};
 
 std::string fixed(double value, int digits) {
   if (std::isnan(value)) return "–";
@@ -355,7 +356,10 @@ std::string markdownPage(const std::vector<SceneResults>& scenes, const RunSetup
       << "body gets the square root). *boxsim damped* is the thesis' damped integration, "
       << "frictionless (its damping stands in for friction, §5.2), so a sliding or tumbling box "
       << "travels further under it; *boxsim damped μ* is the same with the peers' Coulomb "
-      << "friction on every box (the impulse chapter, \"Coulomb friction\").\n";
+      << "friction on every box (the impulse chapter, \"Coulomb friction\"); *boxsim damped chatter* "
+      << "is the frictionless one with chatter detected from history, which puts bodies whose "
+      << "last half second went nowhere to sleep (§6.3.1; the impulse chapter, \"Chatter detected "
+      << "from history\").\n";
   return out.str();
 }
 

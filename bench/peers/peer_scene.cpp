@@ -48,13 +48,19 @@ class BoxsimEngine : public PeerEngine {
  public:
   /// `engine` is a method, optionally with a contact gathering after a slash
   /// ("damped/every_pass"), optionally ending in "+friction": every body then gets the scene's
-  /// Coulomb friction, as the peers have it ("damped+friction").
+  /// Coulomb friction, as the peers have it ("damped+friction"), and in "+chatter": chatter
+  /// detected from history (SleepParams::chatterDetection, "damped+chatter").
   explicit BoxsimEngine(std::string engine) {
-    const std::string plus = "+friction";
-    if (engine.size() > plus.size() && engine.compare(engine.size() - plus.size(), plus.size(), plus) == 0) {
-      friction_ = true;
-      engine.erase(engine.size() - plus.size());
-    }
+    const auto strip = [&engine](const std::string& plus) {
+      const bool ends = engine.size() > plus.size() &&
+                        engine.compare(engine.size() - plus.size(), plus.size(), plus) == 0;
+      if (ends) engine.erase(engine.size() - plus.size());
+      return ends;
+    };
+    bool chatter = strip("+chatter");  // either order: damped+friction+chatter, damped+chatter+friction
+    friction_ = strip("+friction");
+    chatter = strip("+chatter") || chatter;
+    if (chatter) options_.chatterDetection = true;
     const std::size_t slash = engine.find('/');
     method_ = engine.substr(0, slash);
     if (slash != std::string::npos) {
@@ -64,12 +70,14 @@ class BoxsimEngine : public PeerEngine {
     stepper_ = makeStepper(method_, options_);  // refuses an unknown method now, not at load
   }
   std::string name() const override {
-    return "boxsim " + method_ + (gathering_.empty() ? "" : " " + gathering_) + (friction_ ? " μ" : "");
+    return "boxsim " + method_ + (gathering_.empty() ? "" : " " + gathering_) + (friction_ ? " μ" : "") +
+           (options_.chatterDetection.value_or(false) ? " chatter" : "");
   }
   std::string settings() const override {
     std::string text;
     for (const auto& [key, value] : stepper_->parameters())
-      if (key == "integrator" || key == "sleep" || key == "contact_gathering")
+      if (key == "integrator" || key == "sleep" || key == "contact_gathering" ||
+          (key == "chatter_detection" && value == "on"))
         text += (text.empty() ? "" : ", ") + key + " " + value;
     return (text.empty() ? "defaults" : text) +
            (friction_ ? ", Coulomb friction as the peers (patch friction at each contact's centroid)"

@@ -124,7 +124,7 @@ std::unique_ptr<PeerEngine> makeEngine(const std::string& name) {
 /// (frictionless as the thesis, and with the peers' friction) and every peer found, with Bullet's CCD too where a box is launched.
 std::vector<std::string> enginesOf(const SceneSpec& spec, const std::vector<std::string>& asked) {
   if (!asked.empty()) return asked;
-  std::vector<std::string> engines = {"damped", "damped+friction"};
+  std::vector<std::string> engines = {"damped", "damped+friction", "damped+chatter"};
 #ifdef BOXSIM_HAVE_BULLET
   engines.push_back("bullet");
   if (spec.launches) engines.push_back("bullet/ccd");
@@ -203,9 +203,10 @@ int main(int argc, char** argv) {
   app.add_option("--engine", engineNames,
                  "Engine (repeatable): a boxsim method (damped, impulse, ...), optionally with a "
                  "contact gathering after a slash (damped/every_pass), and '+friction' for the "
-                 "peers' Coulomb friction (damped+friction); bullet, bullet/ccd, ode (default: "
-                 "damped, damped+friction and every peer found, Bullet's CCD too on the shot "
-                 "pyramids)");
+                 "peers' Coulomb friction (damped+friction), '+chatter' for chatter detected from "
+                 "history (damped+chatter); bullet, bullet/ccd, ode (default: damped, "
+                 "damped+friction, damped+chatter and every peer found, Bullet's CCD too on the "
+                 "shot pyramids)");
   app.add_option("--restitution", restitution, "Restitution of every scene (default: each scene's own)")
       ->check(CLI::Range(0.0, 1.0));
   app.add_option("--sleep", sleepText, "Sleeping of every engine, on or off (default: each scene's own)")

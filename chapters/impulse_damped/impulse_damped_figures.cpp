@@ -403,6 +403,56 @@ void figS7FrictionIncline(const std::string& dir) {
   writeFileAtomically(dir + "/s7_friction_incline.dat", out);
 }
 
+/// Chatter detected from history (\thesis{§6.3.1}; SleepParams::chatterDetection) against
+/// sleeping as it is, on the die, the shot pyramid, the settling pile and the clump on the
+/// ground: when every body is asleep for good (s; -1 if not by the end), the mean kinetic energy
+/// of the last 2 s, the mean ms a step (one thread, this machine) and the bodies asleep at the end.
+void figS6_3ChatterHistory(const std::string& sceneDir, const std::string& dir) {
+  std::string out = header(
+      "s6_3_chatter_history: damped integration, sleeping as it is (detection off) and with chatter "
+      "detected from history (on)",
+      "case scene detection duration_s at_rest_from_s residual_kinetic_J ms_per_step asleep movable");
+  int index = 0;
+  const std::pair<const char*, double> scenes[] = {
+      {"die", 8.0}, {"pyramid10_shot", 8.0}, {"pile343", 30.0}, {"clump100_ground", 20.0}};
+  for (const auto& [scene, duration] : scenes) {
+    for (const bool detection : {false, true}) {
+      Scene s = loadScene(sceneDir + "/" + scene + ".json");
+      DampedIntegrationParams params;
+      params.sleep.chatterDetection = detection;
+      DampedIntegrationStepper stepper(params);
+      const double dt = 1.0 / 60.0;
+      const long steps = std::lround(duration / dt), tail = std::lround(2.0 / dt);
+      long restFrom = -1;
+      int asleep = 0, movable = 0;
+      double kinetic = 0.0, ms = 0.0;
+      s.world.applyLaunches(0.0);
+      for (long k = 1; k <= steps; ++k) {
+        // As simulate() does: a body launched at T moves from the step that begins at T.
+        s.world.applyLaunches(static_cast<double>(k - 1) * dt + 1e-9 * dt);
+        movable = s.world.movableCount();
+        const auto start = std::chrono::steady_clock::now();
+        asleep = stepper.step(s.world, dt).sleeping;
+        ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        if (asleep == movable) {
+          if (restFrom < 0) restFrom = k;
+        } else {
+          restFrom = -1;
+        }
+        if (k > steps - tail) kinetic += s.world.kineticEnergy() / static_cast<double>(tail);
+      }
+      char line[256];
+      std::snprintf(line, sizeof line, "%d %s %s %g %.4g %.6g %.6g %d %d\n", index++, scene,
+                    detection ? "on" : "off", duration, restFrom < 0 ? -1.0 : restFrom * dt,
+                    kinetic, ms / static_cast<double>(steps), asleep, movable);
+      out += line;
+      std::cout << "impulse_damped: " << scene << " with chatter detection " << (detection ? "on" : "off")
+                << ": " << line;
+    }
+  }
+  writeFileAtomically(dir + "/s6_3_chatter_history.dat", out);
+}
+
 int main(int argc, char** argv) {
   CLI::App app{"Writes the data of the impulse-based and damped integration chapter's figures"};
   std::string sceneDir;
@@ -424,6 +474,7 @@ int main(int argc, char** argv) {
     figS5_3Ablation(sceneDir, outDir);
     figFig5_2DampingVsFriction(outDir);
     figS7FrictionIncline(outDir);
+    figS6_3ChatterHistory(sceneDir, outDir);
     std::vector<Run> timed;
     timed.push_back(runScene(sceneDir, "pyramid20_shot", "damped", 8.0));
     timed.push_back(runScene(sceneDir, "clump100", "damped", 8.0));

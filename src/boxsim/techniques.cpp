@@ -15,13 +15,15 @@ namespace {
 
 /// Throws std::invalid_argument naming the first option given that `method` does not take:
 /// the impulse step's (contact normal, contact gathering) unless `takesImpulseOptions`, and
-/// those of damped integration alone (sleep, continuous collision, plausibility seed).
+/// those of damped integration alone (sleep, chatter detection, continuous collision,
+/// plausibility seed).
 void refuseOptions(const std::string& method, const TechniqueOptions& options,
                    bool takesImpulseOptions) {
   const std::pair<bool, const char*> notTaken[] = {
       {!takesImpulseOptions && options.contactNormal.has_value(), "contact normal"},
       {!takesImpulseOptions && options.contactGathering.has_value(), "contact gathering"},
       {options.sleep.has_value(), "sleep"},
+      {options.chatterDetection.has_value(), "chatter detection"},
       {options.continuousCollision.has_value(), "continuous collision"},
       {options.plausibilitySeed.has_value(), "plausibility seed"},
   };
@@ -71,6 +73,7 @@ std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueO
     if (options.contactNormal) params.impulse.normalModel = *options.contactNormal;
     if (options.contactGathering) params.impulse.gathering = *options.contactGathering;
     if (options.sleep) params.sleep.enabled = *options.sleep;
+    if (options.chatterDetection) params.sleep.chatterDetection = *options.chatterDetection;
     if (options.continuousCollision) params.continuousCollision.enabled = *options.continuousCollision;
     if (options.integrator) params.impulse.integrator = *options.integrator;
     if (options.plausibilitySeed) {

@@ -27,6 +27,9 @@ struct TechniqueOptions {
   std::optional<ContactGatheringMode> contactGathering;
   /// Computational stability (sleeping, \thesis{§4.5}) of damped integration; empty: default (on).
   std::optional<bool> sleep;
+  /// Chatter detected from history (\thesis{§6.3.1}; SleepParams::chatterDetection) of damped
+  /// integration; empty: default (off).
+  std::optional<bool> chatterDetection;
   /// Continuous collision detection for fast bodies of damped integration
   /// (continuous_collision.hpp); empty: default (off).
   std::optional<bool> continuousCollision;

@@ -28,6 +28,7 @@ struct RunArgs {
   std::string contactNormal;  // empty: the method's default
   std::string contactGathering;  // empty: the method's default
   std::string sleep;          // "on", "off" or empty (the method's default)
+  std::string chatterDetection;  // "on", "off" or empty (the method's default)
   std::string continuousCollision;  // "on", "off" or empty (the method's default)
   std::string broadPhase;     // empty: the scene's choice
   std::optional<unsigned long> plausibilitySeed;
@@ -84,6 +85,7 @@ TechniqueOptions techniqueOptions(const RunArgs& args) {
   if (!args.contactGathering.empty())
     options.contactGathering = parseContactGathering(args.contactGathering);
   if (!args.sleep.empty()) options.sleep = args.sleep == "on";
+  if (!args.chatterDetection.empty()) options.chatterDetection = args.chatterDetection == "on";
   if (!args.continuousCollision.empty())
     options.continuousCollision = args.continuousCollision == "on";
   options.plausibilitySeed = args.plausibilitySeed;
@@ -177,6 +179,11 @@ void addRunCommand(CLI::App& app) {
                   "(Alg. A.2 as written)")
       ->check(CLI::IsMember({"once_per_step", "every_pass"}));
   cmd->add_option("--sleep", args->sleep, "Sleeping of bodies at rest (damped): on (default), off")
+      ->check(CLI::IsMember({"on", "off"}));
+  cmd->add_option("--chatter-detection", args->chatterDetection,
+                  "Chatter detected from history (damped, thesis §6.3.1): a supported body whose "
+                  "pose stays within 5% of its size for the time to sleep, its energy not "
+                  "growing, falls asleep: on, off (default)")
       ->check(CLI::IsMember({"on", "off"}));
   cmd->add_option("--continuous-collision", args->continuousCollision,
                   "Continuous collision detection for fast bodies (damped): on, off (default)")

@@ -60,6 +60,8 @@ std::map<std::string, std::string> DampedIntegrationStepper::parameters() const 
       {"wake_speed_g_dt", shortestText(s.wakeSpeed)},
       {"wake_impulse_g_dt", shortestText(s.wakeImpulse)},
       {"support_normal_y", shortestText(s.supportNormalY)},
+      {"chatter_detection", s.chatterDetection ? "on" : "off"},
+      {"chatter_envelope_per_l", shortestText(s.chatterEnvelope)},
       {"plausibility", p.enabled ? "on" : "off"},
       {"plausibility_speed_m_per_s", shortestText(p.speedThreshold)},
       {"plausibility_max_deg", shortestText(p.maxAngleDeg)},

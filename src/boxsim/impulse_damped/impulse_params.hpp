@@ -227,6 +227,18 @@ struct SleepParams {
   /// side on the ground (normals horizontal up to rounding) do not. Waking spreads along
   /// support from below, and a body sleeps only on sleeping or immovable supports.
   double supportNormalY = 0.1;
+  /// Chatter detected from history (\thesis{§6.3.1}, the thesis' future work; the rule is ours,
+  /// ChatterHistory in chatter_history.hpp states it): a body also falls asleep, its momenta
+  /// zeroed, when over the last timeToSleep its pose stayed within an envelope and its kinetic
+  /// energy did not grow, momenta or not, provided something supports it (and, as for every
+  /// body, its supports sleep or are immovable). Off by default: \alg{A.2} and §4.5 as the
+  /// thesis has them, bit for bit.
+  bool chatterDetection = false;
+  /// Unitless, > 0: the envelope of chatter detection, in units of the body's smallest half
+  /// extent ℓ for its centre (and over its half diagonal, in rad, for its orientation). 0.05,
+  /// the envelope filter's default (\thesis{§5.5}): a box that moves less than that in
+  /// timeToSleep is seen as still by the filter too.
+  double chatterEnvelope = 0.05;
 };
 
 /// Visual plausibility (\thesis{§4.2}, after Barzel, Hughes and Wood, "Plausible Motion

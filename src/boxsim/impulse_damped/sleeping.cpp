@@ -16,7 +16,8 @@ namespace {
 bool momentaZero(const BodyState& s) { return s.P == Vec3::Zero() && s.L == Vec3::Zero(); }
 }  // namespace
 
-Sleeping::Sleeping(const SleepParams& params, double slop) : params_(params), slop_(slop) {
+Sleeping::Sleeping(const SleepParams& params, double slop)
+    : params_(params), slop_(slop), chatter_(params.chatterEnvelope, slop) {
   const SleepParams& s = params;
   if (!std::isfinite(s.timeToSleep) || s.timeToSleep <= 0.0)
     throw std::invalid_argument("damped: the time to sleep must be a finite number > 0 s");
@@ -25,6 +26,8 @@ Sleeping::Sleeping(const SleepParams& params, double slop) : params_(params), sl
     throw std::invalid_argument("damped: the wake thresholds must be finite numbers >= 0 g dt");
   if (!(s.supportNormalY > 0.0 && s.supportNormalY < 1.0))
     throw std::invalid_argument("damped: supportNormalY must lie in (0, 1)");
+  if (!std::isfinite(s.chatterEnvelope) || s.chatterEnvelope <= 0.0)
+    throw std::invalid_argument("damped: the chatter envelope must be a finite number > 0 (units of l)");
 }
 
 void Sleeping::standIn(World& world, int body) {
@@ -65,11 +68,13 @@ bool Sleeping::begin(World& world) {
     asleep_.clear();
     stillSteps_.clear();
     resting_.clear();
+    chatter_.resize(0);
   }
   // Bodies added since the last step start awake, with no remembered contacts.
   asleep_.resize(n, 0);
   standing_.assign(n, 0);
   stillSteps_.resize(n, 0);
+  chatter_.resize(n);
   sleepState_.resize(n);
   sleepStable_.resize(n, 0);
   saved_.resize(n);
@@ -115,6 +120,15 @@ bool Sleeping::supportedBy(const ContactManifold& contact, int upper) const {
   return up > params_.supportNormalY;
 }
 
+bool Sleeping::restsFor(int i, long steps) const {
+  if (stillSteps_[i] >= steps) return true;
+  if (!params_.chatterDetection || !chatter_.chatters(static_cast<std::size_t>(i))) return false;
+  // Chatter needs something to chatter on: a free body drifting slowly is not at rest.
+  for (int e : restingOf_[i])
+    if (supportedBy(resting_[e], i)) return true;
+  return false;
+}
+
 void Sleeping::wake(World& world, int body) {
   std::vector<int> pending{body};
   while (!pending.empty()) {
@@ -123,6 +137,7 @@ void Sleeping::wake(World& world, int body) {
     if (!asleep_[i]) continue;
     asleep_[i] = 0;
     stillSteps_[i] = 0;
+    chatter_.reset(static_cast<std::size_t>(i));
     restore(world, i);
     // Spreading: the sleeping bodies this one supports may lose their support.
     for (int e : restingOf_[i]) {
@@ -207,21 +222,24 @@ void Sleeping::end(World& world, const std::vector<ContactManifold>& contacts,
     if (m.depth > slop_ * ell) wake(world, asleep_[m.a] ? m.a : m.b);
   }
   restoreAll(world);
-  // Stillness: momenta exactly zero and a pose the step did not change, bit for bit.
+  // Stillness: momenta exactly zero and a pose the step did not change, bit for bit; and,
+  // with chatter detection, the window of each awake body.
+  const long steps = std::max(1L, std::lround(params_.timeToSleep / dt));
   for (std::size_t i = 0; i < n; ++i) {
     const RigidBody& b = world.bodies[i];
     if (b.immovable || asleep_[i]) continue;
     const bool still =
         momentaZero(b.s) && b.s.x == start_[i].x && b.s.q.coeffs() == start_[i].q.coeffs();
     stillSteps_[i] = still ? stillSteps_[i] + 1 : 0;
+    if (params_.chatterDetection) chatter_.record(i, b, world.gravity, steps);
   }
-  // Falling asleep from the ground up: a still body sleeps once every support sleeps or is
+  // Falling asleep from the ground up: a body at rest sleeps once every support sleeps or is
   // immovable. Each sweep settles at least one more level of a pile, so this ends.
-  const long steps = std::max(1L, std::lround(params_.timeToSleep / dt));
   for (bool changed = true; changed;) {
     changed = false;
     for (std::size_t i = 0; i < n; ++i) {
-      if (asleep_[i] || world.bodies[i].immovable || stillSteps_[i] < steps) continue;
+      if (asleep_[i] || world.bodies[i].immovable || !restsFor(static_cast<int>(i), steps))
+        continue;
       bool supported = true;
       for (int e : restingOf_[i]) {
         const ContactManifold& c = resting_[e];
@@ -230,8 +248,16 @@ void Sleeping::end(World& world, const std::vector<ContactManifold>& contacts,
         if (supportedBy(c, static_cast<int>(i)) && !holds) supported = false;
       }
       if (!supported) continue;
+      // A chattering body is put to rest: the momenta it keeps go nowhere (ChatterHistory).
+      RigidBody& b = world.bodies[i];
+      if (!momentaZero(b.s)) {
+        b.s.P.setZero();
+        b.s.L.setZero();
+        b.updateDerived();
+      }
+      chatter_.reset(i);
       asleep_[i] = 1;
-      sleepState_[i] = world.bodies[i].s;
+      sleepState_[i] = b.s;
       sleepStable_[i] = stable[i];
       changed = true;
     }

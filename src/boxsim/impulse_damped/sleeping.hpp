@@ -9,6 +9,7 @@
 
 #include "boxsim/collision/contact.hpp"
 #include "boxsim/core/world.hpp"
+#include "boxsim/impulse_damped/chatter_history.hpp"
 #include "boxsim/impulse_damped/contact_normal.hpp"
 #include "boxsim/impulse_damped/impulse_params.hpp"
 #include "boxsim/impulse_damped/impulse_pass.hpp"
@@ -23,6 +24,10 @@ namespace boxsim {
 ///   unchanged by the step falls asleep, provided every body supporting it (a contact whose
 ///   normal, pointing to it, has y above `supportNormalY`) is asleep or immovable. Bodies fall
 ///   asleep from the ground up, so a sleeping body's supports never move while it sleeps.
+///   With SleepParams::chatterDetection on, a body that chatters over the same time
+///   (ChatterHistory: its pose within an envelope, no energy gained, from gravity or
+///   otherwise) and that something supports counts as still, and its momenta are zeroed as it
+///   falls asleep.
 /// - *Asleep.* For the whole step a sleeping body stands in as immovable: zero inverse mass
 ///   and inertia, like the lower levels of shock propagation. It is not integrated, damped,
 ///   nudged by FIXCONTACTCONSTRAINTS (it is `held`) or classified; an awake body resting on it
@@ -126,6 +131,9 @@ class Sleeping {
   void restore(World& world, int body);
   void wake(World& world, int body);
   bool supportedBy(const ContactManifold& contact, int upper) const;
+  /// Whether body i is at rest enough to fall asleep after `steps` steps: exactly still that
+  /// long, or chattering (chatter detection on) on at least one support.
+  bool restsFor(int i, long steps) const;
   /// Rebuilds restingOf_ (for each of n bodies, the indices of its remembered contacts).
   void indexResting(std::size_t n);
   /// 1/kg: the normal velocity change per unit normal impulse of body's material point at lever
@@ -141,6 +149,7 @@ class Sleeping {
   std::vector<char> sleepStable_;       // per body: its geometric stability when it fell asleep
   std::vector<MassProperties> saved_;   // per body: mass properties while standing in
   std::vector<BodyState> start_;        // per body: the state at the start of this step
+  ChatterHistory chatter_;              // per body: the window of chatter detection
   // The contact manifolds at the end of the last step, in (a, b) order. Those of pairs that
   // both stand immovable are kept while they do: the broad phase skips such pairs, so the
   // narrow phase cannot report them again, and neither body has moved.
