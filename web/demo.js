@@ -1,12 +1,13 @@
-// boxsim's interactive demo: a scene of the thesis stepped by the WebAssembly engine
-// (boxsim_demo.mjs, built from demo.cpp) and drawn with three.js. Steps are 1/60 s; the page
-// runs as many as real time asks, at most 4 a frame. window.boxsimPage is the interface the
-// browser test (test/browser_test.mjs) drives.
+// boxsim's interactive demo: a scene of the thesis stepped by the WebAssembly engine and drawn
+// with three.js. The engine runs in a worker (demo_worker.js), which steps at real time and
+// posts the poses after every batch of steps; this page draws the latest poses at display rate
+// and sends the worker the user's commands, so that a slow technique slows the simulation and
+// not the view. window.boxsimPage is the interface the browser test (test/browser_test.mjs)
+// drives; its commands answer promises that settle once the worker has carried them out.
 import * as THREE from 'three';
 import { OrbitControls } from './OrbitControls.js';
-import createBoxsim from './boxsim_demo.mjs';
 
-const DT = 1 / 60;  // s
+const SHOTS = 12;  // Demo::kShots
 const FLAG_IMMOVABLE = 1, FLAG_ASLEEP = 2, FLAG_STABLE = 4;  // demo.hpp, BodyFlag
 // Where each scene is seen from (m); shots leave from the eye point.
 const VIEWS = {
@@ -16,7 +17,7 @@ const VIEWS = {
   tower: { eye: [8, 7, 14], target: [0, 4, 0] },
 };
 
-const Module = await createBoxsim();
+const worker = new Worker(new URL('./demo_worker.js', import.meta.url), { type: 'module' });
 const $ = (id) => document.getElementById(id);
 
 const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
@@ -35,14 +36,51 @@ const colours = {
   stable: new THREE.Color(0x6b4a17), asleep: new THREE.Color(0x7d97b8),
 };
 
-let demo = null, meshes = [], settings = null;
-let stepTimes = [], frameTimes = [], lastFrame = performance.now(), owed = 0;
+// `latest` is the worker's last frame of the shown run (null before the first and after an
+// error), `drawn` the one the meshes show. `starting` counts restarts the worker has not yet
+// answered: the worker answers in order, so frames that arrive meanwhile are of an older run.
+let meshes = [], settings = null, latest = null, drawn = null, starting = 0;
+let shotsLeft = SHOTS, paused = false, frameTimes = [], lastFrame = performance.now();
 
-function fail(error) {
-  const message = typeof error === 'number' ? Module.exceptionMessage(error) : String(error);
+function fail(message) {
   $('error').textContent = message;
   console.error('boxsim: ' + message);
 }
+
+// Requests to the worker, answered by id.
+let nextId = 0;
+const waiting = new Map();
+function call(type, args = {}) {
+  const id = nextId++;
+  return new Promise((resolve, reject) => {
+    waiting.set(id, { resolve, reject });
+    worker.postMessage({ type, id, ...args });
+  });
+}
+
+// A frame of the shown run to draw next.
+function show(frame) {
+  latest = frame;
+  shotsLeft = frame.shotsLeft;
+}
+
+worker.addEventListener('message', ({ data }) => {
+  if (data.type === 'frame') {
+    if (starting === 0) show(data);
+  } else if (data.type === 'error') {
+    latest = null;
+    fail(data.message);
+  } else if (data.type === 'reply') {
+    const { resolve, reject } = waiting.get(data.id);
+    waiting.delete(data.id);
+    if (data.error === undefined) resolve(data.value); else reject(new Error(data.error));
+  }
+});
+// The worker's own failures (its script failing to load, say) reach the error line as well.
+worker.addEventListener('error', (event) => {
+  event.preventDefault();
+  fail(event.message || 'the engine\'s worker (demo_worker.js) failed to load');
+});
 
 function readSettings() {
   const method = $('method').value, damped = method === 'damped';
@@ -53,18 +91,21 @@ function readSettings() {
   };
 }
 
-function start() {
+// Restarts the worker's run with the controls' settings and builds its boxes once it answers.
+async function start() {
   settings = readSettings();
   $('error').textContent = '';
-  if (demo) demo.delete();
+  shotsLeft = SHOTS;
+  ++starting;
+  let answer = null;
+  try { answer = await call('start', { settings }); } catch (error) { fail(error.message); }
+  if (--starting > 0) return;  // a later restart is on its way
   for (const mesh of meshes) { scene3.remove(mesh); mesh.geometry.dispose(); mesh.material.dispose(); }
   meshes = [];
-  try {
-    demo = new Module.Demo(settings.scene, settings.method, settings.sleep, settings.stability,
-                           settings.filter);
-  } catch (error) { demo = null; fail(error); return; }
-  const half = demo.halfExtents(), flags = demo.flags();
-  for (let i = 0; i < demo.bodyCount(); ++i) {
+  latest = drawn = null;
+  if (!answer) return;
+  const { halfExtents: half, frame: first } = answer, flags = first.flags;
+  for (let i = 0; i < flags.length; ++i) {
     const geometry = new THREE.BoxGeometry(2 * half[3 * i], 2 * half[3 * i + 1], 2 * half[3 * i + 2]);
     const ground = i === 0 && (flags[i] & FLAG_IMMOVABLE);
     const material = new THREE.MeshLambertMaterial({ color: ground ? colours.ground : colours.box });
@@ -78,53 +119,42 @@ function start() {
   camera.position.set(...view.eye);
   controls.target.set(...view.target);
   controls.update();
-  stepTimes = []; owed = 0;
+  show(first);
   draw();
 }
 
+// Draws the latest frame; the meshes move only when a new one has arrived.
 function draw() {
-  if (!demo) return;
-  const poses = demo.poses(), flags = demo.flags();
-  for (let i = 0; i < meshes.length; ++i) {
-    const mesh = meshes[i], p = 7 * i;
-    mesh.position.set(poses[p], poses[p + 1], poses[p + 2]);
-    mesh.quaternion.set(poses[p + 3], poses[p + 4], poses[p + 5], poses[p + 6]);
-    // A shot not yet fired waits, immovable, far away: hidden.
-    mesh.visible = i === 0 || !(flags[i] & FLAG_IMMOVABLE);
-    if (i > 0) {
-      mesh.material.color.copy(flags[i] & FLAG_STABLE ? colours.stable
-                               : flags[i] & FLAG_ASLEEP ? colours.asleep : colours.box);
+  if (latest && latest !== drawn) {
+    const { poses, flags } = latest;
+    for (let i = 0; i < meshes.length; ++i) {
+      const mesh = meshes[i], p = 7 * i;
+      mesh.position.set(poses[p], poses[p + 1], poses[p + 2]);
+      mesh.quaternion.set(poses[p + 3], poses[p + 4], poses[p + 5], poses[p + 6]);
+      // A shot not yet fired waits, immovable, far away: hidden.
+      mesh.visible = i === 0 || !(flags[i] & FLAG_IMMOVABLE);
+      if (i > 0) {
+        mesh.material.color.copy(flags[i] & FLAG_STABLE ? colours.stable
+                                 : flags[i] & FLAG_ASLEEP ? colours.asleep : colours.box);
+      }
     }
+    drawn = latest;
   }
   renderer.render(scene3, camera);
 }
 
-function step() {
-  const t0 = performance.now();
-  try { demo.step(); } catch (error) { fail(error); demo = null; return; }
-  stepTimes.push(performance.now() - t0);
-  if (stepTimes.length > 60) stepTimes.shift();
-}
-
+// Every display frame: the latest poses drawn, the status line. The frame rate is the page's
+// own; ms/step is measured by the worker around its steps.
 function frame(now) {
   requestAnimationFrame(frame);
-  const elapsed = Math.min((now - lastFrame) / 1000, 0.25);
+  frameTimes.push(Math.min((now - lastFrame) / 1000, 0.25));
   lastFrame = now;
-  frameTimes.push(elapsed);
   if (frameTimes.length > 60) frameTimes.shift();
-  if (!demo || page.paused) { draw(); return; }
-  owed += elapsed;
-  for (let n = 0; owed >= DT && n < 4; ++n) {
-    step();
-    owed -= DT;
-    if (!demo || stepTimes[stepTimes.length - 1] > 1000 * DT) break;  // slower than real time
-  }
-  owed = Math.min(owed, 4 * DT);
   draw();
   const mean = (a) => a.reduce((s, x) => s + x, 0) / Math.max(a.length, 1);
-  $('status').textContent = demo ?
-    `t ${demo.time().toFixed(2)} s   ${mean(stepTimes).toFixed(2)} ms/step\n` +
-    `${(1 / Math.max(mean(frameTimes), 1e-6)).toFixed(0)} fps   ${page.shotsLeft} shots left` : '';
+  $('status').textContent = latest ?
+    `t ${latest.time.toFixed(2)} s   ${latest.msPerStep.toFixed(2)} ms/step\n` +
+    `${(1 / Math.max(mean(frameTimes), 1e-6)).toFixed(0)} fps   ${shotsLeft} shots left` : '';
 }
 
 function resize() {
@@ -141,53 +171,53 @@ renderer.domElement.addEventListener('pointerup', (e) => {
   const ndc = new THREE.Vector2(2 * e.clientX / window.innerWidth - 1, 1 - 2 * e.clientY / window.innerHeight);
   const ray = new THREE.Raycaster();
   ray.setFromCamera(ndc, camera);
-  page.shoot(camera.position.toArray(), ray.ray.direction.toArray());
+  page.shoot(camera.position.toArray(), ray.ray.direction.toArray()).catch((error) => fail(error.message));
 });
 
 const page = {
-  paused: false,
-  shotsLeft: 12,
+  // Pausing stops the worker's clock: recordings step by advance() alone.
+  get paused() { return paused; },
+  set paused(value) {
+    paused = Boolean(value);
+    worker.postMessage({ type: 'pause', paused });
+  },
+  get shotsLeft() { return shotsLeft; },
   settings: () => settings,
   // Changes settings as the controls would, and restarts.
   choose(values) {
     for (const [id, value] of Object.entries(values)) {
       if (typeof value === 'boolean') $(id).checked = value; else $(id).value = value;
     }
-    page.restart();
+    return page.restart();
   },
-  restart() { page.shotsLeft = 12; start(); },
-  shoot(from, direction) {
-    if (demo && demo.shoot(...from, ...direction)) --page.shotsLeft;
+  // Settles once the worker runs the new scene (time() is then 0).
+  restart: () => start(),
+  // Fires a shot from `from` along `direction`; settles to whether one was left.
+  async shoot(from, direction) {
+    const answer = await call('shoot', { from, direction });
+    if (starting === 0) shotsLeft = answer.shotsLeft;
+    return answer.fired;
   },
   // A shot from the current eye point towards the view's target.
   shootAtTarget() {
     const d = controls.target.clone().sub(camera.position).normalize();
-    page.shoot(camera.position.toArray(), d.toArray());
+    return page.shoot(camera.position.toArray(), d.toArray());
   },
   // Steps n times at once and draws (for recordings; pause first so real time adds none).
-  advance(n) {
-    for (let k = 0; k < n && demo; ++k) step();
+  async advance(n) {
+    const after = await call('advance', { n });
+    if (after && starting === 0) show(after);
     draw();
   },
-  time: () => (demo ? demo.time() : NaN),
-  largestDisplacement: () => (demo ? demo.largestDisplacement() : NaN),
-  msPerStep: () => stepTimes.reduce((s, x) => s + x, 0) / Math.max(stepTimes.length, 1),
+  // The latest frame's simulated time (s), largest displacement (m) and mean wall-clock time
+  // of the worker's last 60 steps (ms); NaN before the first frame.
+  time: () => (latest ? latest.time : NaN),
+  largestDisplacement: () => (latest ? latest.largestDisplacement : NaN),
+  msPerStep: () => (latest ? latest.msPerStep : NaN),
   // The digests of a scene of its own (not the one shown) after the given step counts, one
   // shot from the pyramid's eye point along −z after `shot` steps: web_digest's arguments.
-  digests(sceneName, method, shot, counts) {
-    const own = new Module.Demo(sceneName, method, true, true, 'none');
-    const out = [];
-    let done = 0;
-    for (const count of counts) {
-      for (; done < count; ++done) {
-        if (done === shot) own.shoot(0.5, 4.5, 12, 0, 0, -1);
-        own.step();
-      }
-      out.push(`${done} ${own.stateDigest()}`);
-    }
-    own.delete();
-    return out;
-  },
+  // Computed in the worker, which holds the shown run meanwhile.
+  digests: (scene, method, shot, counts) => call('digests', { scene, method, shot, counts }),
 };
 window.boxsimPage = page;
 

@@ -22,7 +22,7 @@ try {
   await page.evaluate(() => {
     document.getElementById('panel').style.display = 'none';
     window.boxsimPage.paused = true;
-    window.boxsimPage.restart();
+    return window.boxsimPage.restart();
   });
   let index = 0;
   const capture = () => page.screenshot({ path: join(frames, `${String(index++).padStart(4, '0')}.png`) });
