@@ -1,9 +1,10 @@
 # Side by side with Bullet and ODE: mean ms per step against the number of unit cubes in the
 # clump of Fig. 6.7 (cubes flying towards its centre, falling onto the ground and piling up)
-# at restitution 0, log-log, for boxsim's damped integration and every peer engine the harness
-# was built with. Points: the mean step over every repetition; error bars: the range of the
-# repetitions' means; dashed: the 95th percentile. The grey dashed guide grows as n from the
-# damped mean at 100 cubes; the dotted line is real time at 60 Hz (16.7 ms).
+# at restitution 0, log-log, for boxsim's damped integration (as the thesis, with friction,
+# with chatter detection) and every peer engine the harness was built with. Points: the mean
+# step over every repetition; error bars: the range of the repetitions' means; dashed: the
+# 95th percentile. The grey dashed guide grows as n from the damped mean at 100 cubes; the
+# dotted line is real time at 60 Hz (16.7 ms).
 # Data: s7_peers_scaling.dat, written by boxsim_peers (rows: boxes "engine" mean_ms median_ms
 # p95_ms rep_min_ms rep_max_ms seconds).
 # Usage: gnuplot -e "datadir='...'; outdir='...'" s7_peers_scaling.gp
@@ -13,7 +14,7 @@ stamp = system("sed -n 's/^# date: \\(.*\\)/\\1/p' ".data)
 commit = system("sed -n 's/^# commit: \\(.*\\)/\\1/p' ".data)
 engines = system("grep -v '^#' ".data." | sed 's/^[0-9]* \"\\([^\"]*\\)\".*/\\1/' | awk '!seen[$0]++' | tr ' ' '_' | tr '\\n' ' '")
 stats data using 1:(strcol(2) eq "boxsim damped" ? $3 : NaN) nooutput name "D"
-colour(i) = word("#d62728 #1f77b4 #2ca02c #ff7f0e", i)
+colour(i) = word("#d62728 #1f77b4 #2ca02c #ff7f0e #9467bd #8c564b", i)
 label(e) = system("echo '".e."' | tr '_' ' '")
 # One engine's rows alone, so its points join into one line.
 rows(e) = "< grep -F '\"".label(e)."\"' ".data
