@@ -30,9 +30,9 @@ CausalEnvelopeFilter::CausalEnvelopeFilter(std::vector<TrajectoryBody> bodies,
     : bodies_(std::move(bodies)) {
   validateEnvelopeFilterParams(params);
   for (const TrajectoryBody& b : bodies_) {
-    const double r = params.radius ? *params.radius : kEnvelopeRadiusFraction * b.halfExtents.minCoeff();
-    radius_.push_back(r);
-    angle_.push_back(params.angle ? *params.angle : r / b.halfExtents.norm());
+    const Envelope fallback = Envelope::of(b.halfExtents);
+    const double r = params.radius ? *params.radius : fallback.radius();
+    envelope_.emplace_back(r, params.angle ? *params.angle : r / b.halfExtents.norm());
   }
 }
 
@@ -52,8 +52,7 @@ TrajectoryFrame CausalEnvelopeFilter::push(const TrajectoryFrame& frame) {
     if (bodies_[b].immovable) continue;
     // Outside the envelope: the stable pose jumps to the simulated pose (both parts of it, so
     // the displayed pose is always a pose the simulation produced).
-    if ((frame.x[b] - stableX_[b]).norm() > radius_[b] ||
-        rotationAngle(stableQ_[b], frame.q[b]) > angle_[b]) {
+    if (!envelope_[b].contains(stableX_[b], stableQ_[b], frame.x[b], frame.q[b])) {
       stableX_[b] = frame.x[b];
       stableQ_[b] = frame.q[b];
     }

@@ -20,15 +20,9 @@
 #include <vector>
 
 #include "boxsim/core/frame_sink.hpp"
+#include "boxsim/filtering/envelope.hpp"
 
 namespace boxsim {
-
-/// The default envelope radius as a fraction of a body's smallest half extent: 5 %, 2.5 cm for
-/// the unit cubes of the thesis' scenes. It must exceed the amplitude of chatter and stay below
-/// what reads as a jump. The plain impulse step's chatter stays within about a centimetre
-/// (12 mm in the standing pyramid, s5_2_chatter; under a micrometre for the die at rest,
-/// s5_5_die_filtered), and a 2.5 cm step is 1/40 of a cube's edge.
-inline constexpr double kEnvelopeRadiusFraction = 0.05;
 
 /// Parameters of the envelope filter. An empty value takes a per-body default from the body's
 /// size.
@@ -65,14 +59,13 @@ class CausalEnvelopeFilter {
   TrajectoryFrame push(const TrajectoryFrame& frame);
 
   /// The envelope radius of body b, m.
-  double radius(std::size_t b) const { return radius_.at(b); }
+  double radius(std::size_t b) const { return envelope_.at(b).radius(); }
   /// The envelope angle of body b, rad.
-  double angle(std::size_t b) const { return angle_.at(b); }
+  double angle(std::size_t b) const { return envelope_.at(b).angle(); }
 
  private:
   std::vector<TrajectoryBody> bodies_;
-  std::vector<double> radius_;
-  std::vector<double> angle_;
+  std::vector<Envelope> envelope_;  // per body
   std::vector<Vec3> stableX_;
   std::vector<Quat> stableQ_;
   bool started_ = false;

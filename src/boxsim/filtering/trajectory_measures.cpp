@@ -7,6 +7,7 @@
 
 #include "boxsim/collision/separating_axis.hpp"
 #include "boxsim/filtering/box_filter.hpp"
+#include "boxsim/filtering/envelope.hpp"
 #include "boxsim/filtering/orientation_average.hpp"
 
 namespace boxsim {
@@ -63,11 +64,12 @@ std::vector<std::size_t> restingBodies(const Trajectory& raw, FrameWindow window
   const TrajectoryFrame& first = raw.frames[window.begin];
   for (std::size_t b = 0; b < raw.bodies.size(); ++b) {
     if (raw.bodies[b].immovable) continue;
-    const double reach = params.displacementFraction * raw.bodies[b].halfExtents.minCoeff();
+    const Envelope envelope(params.displacementFraction * raw.bodies[b].halfExtents.minCoeff(),
+                           params.angle);
     bool rests = true;
     for (std::size_t k = window.begin; k < window.end && rests; ++k) {
       const TrajectoryFrame& f = raw.frames[k];
-      rests = (f.x[b] - first.x[b]).norm() <= reach && rotationAngle(first.q[b], f.q[b]) <= params.angle;
+      rests = envelope.contains(first.x[b], first.q[b], f.x[b], f.q[b]);
     }
     if (rests) resting.push_back(b);
   }

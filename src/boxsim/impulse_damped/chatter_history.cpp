@@ -5,6 +5,8 @@
 
 #include <algorithm>
 
+#include "boxsim/filtering/envelope.hpp"
+
 namespace boxsim {
 
 void ChatterHistory::resize(std::size_t n) { bodies_.resize(n); }
@@ -23,17 +25,13 @@ void ChatterHistory::record(std::size_t i, const RigidBody& body, const Vec3& g,
 bool ChatterHistory::judge(const std::vector<Sample>& window, const RigidBody& body,
                            const Vec3& g) const {
   const Sample& first = window.front();
-  // (1) The envelope of the envelope filter (\thesis{§5.5}): r = envelope ℓ for the centre, r / h
-  // for the orientation. The turn from the first pose, d = q₀* q, has |d.vec| = sin(θ/2) <= θ/2,
-  // so comparing it with r / (2h) needs only a square root (the same bits everywhere,
-  // docs/web.md) and lets through at most the turn whose half-angle sine is r / (2h).
-  const double ell = body.halfExtents.minCoeff();
-  const double r = envelope_ * ell, halfTurn = r / (2.0 * body.halfExtents.norm());
+  // (1) The envelope of the envelope filter (\thesis{§5.5}) around the window's first pose.
+  const Envelope envelope = Envelope::of(body.halfExtents, envelope_);
   for (const Sample& s : window)
-    if ((s.x - first.x).norm() > r || (first.q.conjugate() * s.q).vec().norm() > halfTurn)
-      return false;
+    if (!envelope.contains(first.x, first.q, s.x, s.q)) return false;
   // (2) No work of gravity: the centre sank along g by no more than the slop.
   const double gNorm = g.norm();
+  const double ell = body.halfExtents.minCoeff();
   if (gNorm > 0.0 && g.dot(window.back().x - first.x) / gNorm > slop_ * ell) return false;
   // (3) No energy gathered: the last step's no more than the largest of the first half.
   double firstHalf = 0.0;

@@ -16,6 +16,7 @@
 
 #include "boxsim/core/enum_names.hpp"
 #include "boxsim/core/integrator.hpp"
+#include "boxsim/filtering/envelope.hpp"
 
 namespace boxsim {
 
@@ -235,10 +236,10 @@ struct SleepParams {
   /// thesis has them, bit for bit.
   bool chatterDetection = false;
   /// Unitless, > 0: the envelope of chatter detection, in units of the body's smallest half
-  /// extent ℓ for its centre (and over its half diagonal, in rad, for its orientation). 0.05,
-  /// the envelope filter's default (\thesis{§5.5}): a box that moves less than that in
-  /// timeToSleep is seen as still by the filter too.
-  double chatterEnvelope = 0.05;
+  /// extent ℓ for its centre (and over its half diagonal, in rad, for its orientation;
+  /// Envelope::of). The envelope filter's default (\thesis{§5.5}): a box that moves less than
+  /// that in timeToSleep is seen as still by the filter too.
+  double chatterEnvelope = kEnvelopeRadiusFraction;
 };
 
 /// Visual plausibility (\thesis{§4.2}, after Barzel, Hughes and Wood, "Plausible Motion
