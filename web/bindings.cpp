@@ -49,6 +49,7 @@ EMSCRIPTEN_BINDINGS(boxsim_demo) {
       .constructor(&makeDemo, emscripten::allow_raw_pointers())
       .function("step", &Demo::step)
       .function("shoot", &shoot)
+      .function("shotsLeft", &Demo::shotsLeft)
       .function("time", &Demo::time)
       .function("bodyCount", &Demo::bodyCount)
       .function("largestDisplacement", &Demo::largestDisplacement)

@@ -58,6 +58,8 @@ class Demo : public FrameSink {
   /// Fires the next shot: a unit cube of 1 kg from `from` (m) along `direction` (normalised
   /// here) at kShotSpeed, entering at the next step. Returns false when all kShots are spent.
   bool shoot(const Vec3& from, const Vec3& direction);
+  /// Shots the page may still fire in this run.
+  int shotsLeft() const { return kShots - shotsFired_; }
 
   double time() const { return time_; }  ///< s
   int bodyCount() const { return static_cast<int>(world_.bodies.size()); }

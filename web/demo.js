@@ -7,7 +7,6 @@
 import * as THREE from 'three';
 import { OrbitControls } from './OrbitControls.js';
 
-const SHOTS = 12;  // Demo::kShots
 const FLAG_IMMOVABLE = 1, FLAG_ASLEEP = 2, FLAG_STABLE = 4;  // demo.hpp, BodyFlag
 // Where each scene is seen from (m); shots leave from the eye point.
 const VIEWS = {
@@ -40,7 +39,7 @@ const colours = {
 // error), `drawn` the one the meshes show. `starting` counts restarts the worker has not yet
 // answered: the worker answers in order, so frames that arrive meanwhile are of an older run.
 let meshes = [], settings = null, latest = null, drawn = null, starting = 0;
-let shotsLeft = SHOTS, paused = false, frameTimes = [], lastFrame = performance.now();
+let shotsLeft = 0, paused = false, frameTimes = [], lastFrame = performance.now();
 
 function fail(message) {
   $('error').textContent = message;
@@ -95,7 +94,6 @@ function readSettings() {
 async function start() {
   settings = readSettings();
   $('error').textContent = '';
-  shotsLeft = SHOTS;
   ++starting;
   let answer = null;
   try { answer = await call('start', { settings }); } catch (error) { fail(error.message); }

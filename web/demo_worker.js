@@ -15,10 +15,9 @@ import createBoxsim from './boxsim_demo.mjs';
 
 const DT = 1 / 60;  // s
 const BATCH = 4;    // steps a batch at most: a slow technique runs in slow motion, not behind
-const SHOTS = 12;   // Demo::kShots
 
 const ready = createBoxsim();
-let Module = null, demo = null, paused = false, shotsLeft = 0;
+let Module = null, demo = null, paused = false;
 // Wall-clock time of every recent step (ms) and simulated time owed to the clock (s).
 let stepTimes = [], owed = 0, last = performance.now();
 
@@ -33,7 +32,7 @@ function frame() {
     type: 'frame', time: demo.time(), poses: demo.poses().slice(),
     flags: Uint8Array.from(demo.flags()),
     msPerStep: stepTimes.reduce((s, x) => s + x, 0) / Math.max(stepTimes.length, 1),
-    largestDisplacement: demo.largestDisplacement(), shotsLeft,
+    largestDisplacement: demo.largestDisplacement(), shotsLeft: demo.shotsLeft(),
   };
 }
 const transfers = (f) => (f ? [f.poses.buffer, f.flags.buffer] : []);
@@ -86,7 +85,7 @@ const commands = {
   start({ settings: s }) {
     if (demo) demo.delete();
     demo = null;
-    stepTimes = []; owed = 0; shotsLeft = SHOTS;
+    stepTimes = []; owed = 0;
     demo = new Module.Demo(s.scene, s.method, s.sleep, s.stability, s.filter);
     const halfExtents = Float64Array.from(demo.halfExtents()), f = frame();
     return { value: { halfExtents, frame: f }, transfer: [halfExtents.buffer, ...transfers(f)] };
@@ -94,8 +93,7 @@ const commands = {
   // Fires the next shot at the next step; answers whether there was one left.
   shoot({ from, direction }) {
     const fired = Boolean(demo && demo.shoot(...from, ...direction));
-    if (fired) --shotsLeft;
-    return { value: { fired, shotsLeft } };
+    return { value: { fired, shotsLeft: demo ? demo.shotsLeft() : 0 } };
   },
   pause({ paused: value }) {
     paused = value;
