@@ -36,42 +36,53 @@ struct Run {
   std::string method;
   Trajectory trajectory;
   std::vector<double> msPerStep;  // one per frame after the first
+  std::vector<std::pair<int, int>> asleep;  // per step: bodies asleep, movable bodies
 };
 
-/// Wraps a stepper to time every step (steady clock, ms).
+/// Wraps a stepper to time every step (steady clock, ms) and count the bodies asleep.
 class TimedStepper final : public Stepper {
  public:
-  TimedStepper(Stepper& inner, std::vector<double>& ms) : inner_(inner), ms_(ms) {}
+  explicit TimedStepper(Stepper& inner, Run& run) : inner_(inner), run_(run) {}
   std::string name() const override { return inner_.name(); }
   std::map<std::string, std::string> parameters() const override { return inner_.parameters(); }
   StepStats step(World& world, double dt) override {
     const auto start = std::chrono::steady_clock::now();
     const StepStats s = inner_.step(world, dt);
-    ms_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    run_.msPerStep.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    run_.asleep.emplace_back(s.sleeping, world.movableCount());
     return s;
   }
 
  private:
   Stepper& inner_;
-  std::vector<double>& ms_;
+  Run& run_;
 };
 
-Run runScene(const std::string& sceneDir, const std::string& scene, const std::string& method,
-             double duration) {
+/// A run of scene (sceneDir/scene.json) under `stepper` for `duration` s at Δt = 1/60 s.
+Run runWith(const std::string& sceneDir, const std::string& scene, Stepper& stepper,
+            double duration) {
   const std::string path = sceneDir + "/" + scene + ".json";
   Scene s = loadScene(path);
-  std::unique_ptr<Stepper> stepper = makeStepper(method);
-  Run run{scene, method, {}, {}};
-  TimedStepper timed(*stepper, run.msPerStep);
+  Run run{scene, stepper.name(), {}, {}, {}};
+  TimedStepper timed(stepper, run);
   const double dt = 1.0 / 60.0;
-  Recorder recorder(s.world, runParameters(*stepper, s.world, path, dt, duration));
+  Recorder recorder(s.world, runParameters(stepper, s.world, path, dt, duration));
   SimulateOptions options;
   options.dt = dt;
   options.duration = duration;
   simulate(s.world, timed, options, recorder);
   run.trajectory = recorder.trajectory();
-  std::cout << "impulse_damped: " << scene << " under " << method << ": "
+  std::cout << "impulse_damped: " << scene << " under " << run.method << ": "
             << run.trajectory.frames.size() - 1 << " steps\n";
+  return run;
+}
+
+Run runScene(const std::string& sceneDir, const std::string& scene, const std::string& method,
+             double duration) {
+  std::unique_ptr<Stepper> stepper = makeStepper(method);
+  Run run = runWith(sceneDir, scene, *stepper, duration);
+  run.method = method;
   return run;
 }
 
@@ -417,33 +428,24 @@ void figS6_3ChatterHistory(const std::string& sceneDir, const std::string& dir) 
       {"die", 8.0}, {"pyramid10_shot", 8.0}, {"pile343", 30.0}, {"clump100_ground", 20.0}};
   for (const auto& [scene, duration] : scenes) {
     for (const bool detection : {false, true}) {
-      Scene s = loadScene(sceneDir + "/" + scene + ".json");
       DampedIntegrationParams params;
       params.sleep.chatterDetection = detection;
       DampedIntegrationStepper stepper(params);
+      const Run run = runWith(sceneDir, scene, stepper, duration);
       const double dt = 1.0 / 60.0;
-      const long steps = std::lround(duration / dt), tail = std::lround(2.0 / dt);
-      long restFrom = -1;
-      int asleep = 0, movable = 0;
+      const std::size_t steps = run.asleep.size(), tail = static_cast<std::size_t>(std::lround(2.0 / dt));
+      // The step from which every movable body stays asleep to the end, if any.
+      std::size_t restFrom = steps;
+      while (restFrom > 0 && run.asleep[restFrom - 1].first == run.asleep[restFrom - 1].second) --restFrom;
       double kinetic = 0.0, ms = 0.0;
-      s.world.applyLaunches(0.0);
-      for (long k = 1; k <= steps; ++k) {
-        // As simulate() does: a body launched at T moves from the step that begins at T.
-        s.world.applyLaunches(static_cast<double>(k - 1) * dt + 1e-9 * dt);
-        movable = s.world.movableCount();
-        const auto start = std::chrono::steady_clock::now();
-        asleep = stepper.step(s.world, dt).sleeping;
-        ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-        if (asleep == movable) {
-          if (restFrom < 0) restFrom = k;
-        } else {
-          restFrom = -1;
-        }
-        if (k > steps - tail) kinetic += s.world.kineticEnergy() / static_cast<double>(tail);
-      }
+      for (std::size_t k = steps - tail + 1; k <= steps; ++k)
+        kinetic += run.trajectory.frames[k].kinetic / static_cast<double>(tail);
+      for (const double m : run.msPerStep) ms += m;
+      const auto [asleep, movable] = run.asleep.back();
       char line[256];
       std::snprintf(line, sizeof line, "%d %s %s %g %.4g %.6g %.6g %d %d\n", index++, scene,
-                    detection ? "on" : "off", duration, restFrom < 0 ? -1.0 : restFrom * dt,
+                    detection ? "on" : "off", duration,
+                    restFrom == steps ? -1.0 : static_cast<double>(restFrom + 1) * dt,
                     kinetic, ms / static_cast<double>(steps), asleep, movable);
       out += line;
       std::cout << "impulse_damped: " << scene << " with chatter detection " << (detection ? "on" : "off")
