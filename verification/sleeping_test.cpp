@@ -32,13 +32,19 @@ const long kStepsToSleep = std::lround(SleepParams{}.timeToSleep / kDt);
 /// The FIXCONTACTCONSTRAINTS slop for unit cubes (ℓ = 0.5 m), m.
 const double kSlop = FixContactParams{}.slop * 0.5;
 
-/// Adds a unit cube (1 kg) at `centre` with velocity `v`; returns its index.
-int addCube(World& world, const Vec3& centre, const Vec3& v = Vec3::Zero()) {
+/// A unit cube (ℓ = 0.5 m, h = √0.75 m) at `x`, rotated by `angle` rad about z, moving at `v`.
+RigidBody cubeAt(const Vec3& x, double angle = 0.0, const Vec3& v = Vec3::Zero()) {
   RigidBody b = RigidBody::box(Vec3::Constant(0.5), 1.0);
-  b.s.x = centre;
+  b.s.x = x;
+  b.s.q = Quat(Eigen::AngleAxisd(angle, Vec3::UnitZ()));
   b.updateDerived();
   b.setVelocity(v);
-  return world.add(b, "cube" + std::to_string(world.bodies.size()));
+  return b;
+}
+
+/// Adds a unit cube (1 kg) at `centre` with velocity `v`; returns its index.
+int addCube(World& world, const Vec3& centre, const Vec3& v = Vec3::Zero()) {
+  return world.add(cubeAt(centre, 0.0, v), "cube" + std::to_string(world.bodies.size()));
 }
 
 int countAsleep(const DampedIntegrationStepper& stepper) {
@@ -297,20 +303,6 @@ TEST_CASE("A box asleep on an immovable support wakes when the support is made m
 }
 
 // --- chatter detected from history (§6.3.1) -------------------------------------------------
-
-namespace {
-
-/// A unit cube (ℓ = 0.5 m, h = √0.75 m) at `x`, rotated by `angle` rad about z, moving at `v`.
-RigidBody cubeAt(const Vec3& x, double angle = 0.0, const Vec3& v = Vec3::Zero()) {
-  RigidBody b = RigidBody::box(Vec3::Constant(0.5), 1.0);
-  b.s.x = x;
-  b.s.q = Quat(Eigen::AngleAxisd(angle, Vec3::UnitZ()));
-  b.updateDerived();
-  b.setVelocity(v);
-  return b;
-}
-
-}  // namespace
 
 TEST_CASE("Chatter history: a window within the envelope, not sinking, its energy not growing, "
           "chatters, and leaving the envelope, sinking or gathering energy does not",
