@@ -249,24 +249,10 @@ TEST_CASE("The analytic method is chosen by name and refuses options it lacks", 
 }
 
 namespace {
-
 /// Linear and angular acceleration of every body under the stepper's contact wrenches.
 std::vector<Vec3> accelerations(const World& world, const AnalyticStepper& stepper) {
-  const std::vector<Wrench> wrenches = stepper.contactWrenches(world, kDt);
-  std::vector<Vec3> result;
-  for (std::size_t k = 0; k < world.bodies.size(); ++k) {
-    const RigidBody& b = world.bodies[k];
-    if (b.immovable) {
-      result.push_back(Vec3::Zero());
-      result.push_back(Vec3::Zero());
-      continue;
-    }
-    result.push_back(world.gravity + b.invMass * wrenches[k].force);
-    result.push_back(b.Iinv * (wrenches[k].torque + b.s.L.cross(b.omega)));
-  }
-  return result;
+  return stepper.contactAccelerations(world, kDt);
 }
-
 }  // namespace
 
 TEST_CASE("With the geometric-stability exclusion every body accelerates as under the full LCP",

@@ -41,19 +41,20 @@ std::map<std::string, std::string> AnalyticStepper::parameters() const {
           {"full_contact_area", params_.fullContactArea ? "on" : "off"},
           {"drift_correction", params_.driftCorrection ? "on" : "off"},
           {"drift_beta", shortestText(params_.driftBeta)},
-          {"geometric_stability", params_.useGeometricStability ? "on" : "off"},
+          {"geometric_stability", !params_.useGeometricStability            ? "off"
+                                  : params_.geometricStability.underLoad ? "under_load"
+                                                                         : "thesis"},
           {"sticky", params_.sticky ? "on" : "off"},
           {"sticky_speed_m_per_s", shortestText(params_.stickySpeed)}};
 }
 
-std::vector<Wrench> AnalyticStepper::contactWrenches(const World& world, double dt) const {
+AnalyticStepper::RestingSystem AnalyticStepper::restingSystem(const World& world) const {
   const std::vector<ContactManifold> manifolds = findContacts(world, params_.contactMargin);
+  RestingSystem system;
   // §5.4: stable bodies stand in the LCP as immovable; their mutual contacts leave it.
-  std::vector<char> stable;
   if (params_.useGeometricStability)
-    stable = setGeometricallyStable(world, manifolds, params_.geometricStability);
-  std::vector<PointContact> resting;
-  std::vector<double> approach, depth;
+    system.stable = setGeometricallyStable(world, manifolds, params_.geometricStability);
+  const std::vector<char>& stable = system.stable;
   for (const ContactManifold& m : manifolds) {
     if (!stable.empty() && stable[m.a] && stable[m.b]) continue;
     // §3.2: the vertices of the contact area, or the manifold's reduced points.
@@ -67,11 +68,20 @@ std::vector<Wrench> AnalyticStepper::contactWrenches(const World& world, double 
       const double vRel =
           relativeNormalVelocity(world.bodies[m.a], world.bodies[m.b], p.position, m.normal);
       if (std::abs(vRel) > params_.restingSpeed) continue;
-      resting.push_back(PointContact{m.a, m.b, p.position, m.normal, rate});
-      approach.push_back(vRel);
-      depth.push_back(p.depth);
+      system.contacts.push_back(PointContact{m.a, m.b, p.position, m.normal, rate});
+      system.approach.push_back(vRel);
+      system.depth.push_back(p.depth);
     }
   }
+  return system;
+}
+
+std::vector<Wrench> AnalyticStepper::contactWrenches(const World& world, double dt) const {
+  const RestingSystem system = restingSystem(world);
+  const std::vector<char>& stable = system.stable;
+  const std::vector<PointContact>& resting = system.contacts;
+  const std::vector<double>& approach = system.approach;
+  const std::vector<double>& depth = system.depth;
   lastLcpSize_ = static_cast<int>(resting.size());
   lastMostNegativeForce_ = 0.0;
   std::vector<Wrench> wrenches(world.bodies.size());
@@ -95,6 +105,18 @@ std::vector<Wrench> AnalyticStepper::contactWrenches(const World& world, double 
     wrenches[k].torque = -body.s.L.cross(body.omega);
   }
   return wrenches;
+}
+
+std::vector<Vec3> AnalyticStepper::contactAccelerations(const World& world, double dt) const {
+  const std::vector<Wrench> wrenches = contactWrenches(world, dt);
+  std::vector<Vec3> result(2 * world.bodies.size(), Vec3::Zero());
+  for (std::size_t k = 0; k < world.bodies.size(); ++k) {
+    const RigidBody& b = world.bodies[k];
+    if (b.immovable) continue;
+    result[2 * k] = world.gravity + b.invMass * wrenches[k].force;
+    result[2 * k + 1] = b.Iinv * (wrenches[k].torque + b.s.L.cross(b.omega));
+  }
+  return result;
 }
 
 StepStats AnalyticStepper::step(World& world, double dt) {

@@ -17,6 +17,7 @@
 /// collision that sticks.
 #pragma once
 
+#include "boxsim/analytic_lcp/contact_matrix.hpp"
 #include "boxsim/analytic_lcp/lcp_solver.hpp"
 #include "boxsim/basic_colliding/basic_colliding.hpp"
 #include "boxsim/geometric_stability/geometric_stability.hpp"
@@ -110,13 +111,31 @@ class AnalyticStepper final : public Stepper {
   /// extraForces hook) for an interval of dt s (the drift correction needs it): one per body,
   /// zero for bodies with no resting contact.
   std::vector<Wrench> contactWrenches(const World& world, double dt) const;
+  /// The accelerations those wrenches and gravity give: for body k, element 2k is its linear
+  /// acceleration (m/s²) and 2k + 1 its angular acceleration ω̇ = I⁻¹(τ + L × ω) (rad/s²); zeros
+  /// for immovable bodies. Zero for every body of a set held at rest (what the stability tests
+  /// compare with).
+  std::vector<Vec3> contactAccelerations(const World& world, double dt) const;
   /// Contacts in the last LCP solved by contactWrenches (after any exclusion), for benches.
   int lastLcpSize() const { return lastLcpSize_; }
+  /// The size contactWrenches' LCP would have at the world's current state (resting contact
+  /// points after any exclusion), without solving it: for scenes whose full LCP is too large to
+  /// time.
+  int lcpSize(const World& world) const { return static_cast<int>(restingSystem(world).contacts.size()); }
   /// N, LcpResult::mostNegativeForce of the last LCP solved: what the force clamp removed (or,
   /// with it off, left in), for the figure of the failure \thesis{§3.3.1} reports.
   double lastMostNegativeForce() const { return lastMostNegativeForce_; }
 
  private:
+  /// The resting contacts the LCP is built from, with the stability flags behind the exclusion.
+  struct RestingSystem {
+    std::vector<char> stable;  ///< empty without the exclusion
+    std::vector<PointContact> contacts;
+    std::vector<double> approach;  ///< m/s, normal relative velocity of each contact
+    std::vector<double> depth;     ///< m, penetration of each contact
+  };
+  RestingSystem restingSystem(const World& world) const;
+
   AnalyticParams params_;
   mutable int lastLcpSize_ = 0;
   mutable double lastMostNegativeForce_ = 0.0;
