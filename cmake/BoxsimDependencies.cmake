@@ -29,6 +29,7 @@ endmacro()
 
 boxsim_require_package(Eigen3 libeigen3-dev 3.3 NO_MODULE)
 boxsim_require_package(GSL libgsl-dev)
+boxsim_require_package(GLPK libglpk-dev)
 boxsim_require_package(nlohmann_json nlohmann-json3-dev 3.2)
 boxsim_require_package(CLI11 libcli11-dev)
 if(BOXSIM_BUILD_TESTS)

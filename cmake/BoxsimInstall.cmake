@@ -30,11 +30,12 @@ configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/boxsimConfig.cmake.in
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/boxsimConfigVersion.cmake
                                  COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/boxsimConfig.cmake
-              ${PROJECT_BINARY_DIR}/boxsimConfigVersion.cmake
+              ${PROJECT_BINARY_DIR}/boxsimConfigVersion.cmake ${PROJECT_SOURCE_DIR}/cmake/FindGLPK.cmake
         DESTINATION ${BOXSIM_CMAKE_PACKAGE_DIR})
 
 # pkg-config: the libraries from the top layer down, as a static link needs them; the
-# dependencies' own .pc files (eigen3, gsl, nlohmann_json) add their flags. The prefix is
+# dependencies' own .pc files (eigen3, gsl, nlohmann_json) add their flags; GLPK has none, so
+# -lglpk is named. The prefix is
 # relative to the file, so `cmake --install --prefix` anywhere gives a working file.
 file(RELATIVE_PATH BOXSIM_PC_TO_PREFIX /prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig /prefix)
 string(REGEX REPLACE "/$" "" BOXSIM_PC_TO_PREFIX "${BOXSIM_PC_TO_PREFIX}")

@@ -163,6 +163,23 @@ void checkInput(const World& world, const std::vector<ContactManifold>& contacts
 
 }  // namespace
 
+std::string geometricStabilityModeName(GeometricStabilityMode mode) {
+  switch (mode) {
+    case GeometricStabilityMode::Off: return "off";
+    case GeometricStabilityMode::Thesis: return "thesis";
+    case GeometricStabilityMode::UnderLoad: return "under_load";
+  }
+  throw std::invalid_argument("geometric stability: unknown mode");
+}
+
+GeometricStabilityMode parseGeometricStabilityMode(const std::string& name) {
+  for (const GeometricStabilityMode mode : {GeometricStabilityMode::Off, GeometricStabilityMode::Thesis,
+                                            GeometricStabilityMode::UnderLoad})
+    if (name == geometricStabilityModeName(mode)) return mode;
+  throw std::invalid_argument("unknown geometric stability '" + name +
+                              "'; known: off, thesis, under_load");
+}
+
 std::vector<char> setGeometricallyStable(const World& world,
                                          const std::vector<ContactManifold>& contacts,
                                          const GeometricStabilityParams& params) {
@@ -229,15 +246,16 @@ std::vector<char> setGeometricallyStable(const World& world,
       // DEVIATION(SETGEOMETRICALLYSTABLE L17): a body ruled out earlier stays out; otherwise a
       // later point at the same height could mark it stable again after L20, and the verdict would
       // depend on the order of points of equal height.
-      if (supported && !marks[o].ruledOut) stable[o] = 1;
+      if (supported && !marks[o].ruledOut) stable[o] = kGeometricallyStable;
     } else {
       // SETGEOMETRICALLYSTABLE L18-L20: the outward normal here points down (or, on a tilted box,
       // nowhere along y), never along +y, and the body under it is not stable: this contact can
       // push the body, so it is not stable.
-      stable[o] = 0;
+      stable[o] = kUnstable;
       marks[o].ruledOut = true;
     }
   }
+  if (params.underLoad) addStableUnderLoad(world, contacts, params, stable);
   return stable;
 }
 

@@ -21,10 +21,12 @@
 /// \endverbatim
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "boxsim/collision/contact.hpp"
 #include "boxsim/core/world.hpp"
+#include "boxsim/geometric_stability/load_stability.hpp"
 
 namespace boxsim {
 
@@ -49,9 +51,29 @@ struct GeometricStabilityParams {
   /// tolerance. For boxes both rules agree: the support points lie in the bottom face, and a
   /// hull of points inside a rectangle contains the rectangle only if it contains its corners.
   bool useSupportHull = false;
+  /// Beyond the thesis (\thesis{§6.3.1}, Figs. 6.4 and 6.5): after §5.4's rule, also mark the
+  /// boxes that hold under the loads they have (load_stability.hpp: a linear program of
+  /// equilibrium over the support forces of each group of resting boxes whose loads are all
+  /// known). Off: the thesis' classification alone.
+  bool underLoad = false;
 };
 
-/// One flag per body of `world`, 1 for a geometrically stable body, 0 otherwise.
+/// Which classification a technique runs (the command line's --geometric-stability).
+enum class GeometricStabilityMode {
+  Off,        ///< none: every body is simulated in full
+  Thesis,     ///< \thesis{§5.4}'s rule (SETGEOMETRICALLYSTABLE)
+  UnderLoad,  ///< §5.4's rule, then stability under load (GeometricStabilityParams::underLoad)
+};
+
+/// "off", "thesis", "under_load".
+std::string geometricStabilityModeName(GeometricStabilityMode mode);
+/// Parses the names of geometricStabilityModeName(); throws std::invalid_argument naming the
+/// known ones on others.
+GeometricStabilityMode parseGeometricStabilityMode(const std::string& name);
+
+/// One flag per body of `world` (StabilityFlag): kGeometricallyStable (1) for a geometrically
+/// stable body, kStableUnderLoad (2) for one stable under its loads (params.underLoad only),
+/// kUnstable (0) otherwise.
 /// \param world     bodies with up-to-date derived rotation R (columns = box axes)
 /// \param contacts  every contact manifold of the world, as findContacts(world, margin) returns
 ///                  them with a small margin (e.g. 1e-6 m), so that exactly touching boxes have
@@ -62,9 +84,11 @@ struct GeometricStabilityParams {
 ///         when it is level (a face normal along −y), none of its contacts has a normal off
 ///         the y axis, every contact under it is with a stable body, and the four corners of
 ///         its bottom face coincide with points of those contacts. The result does not depend
-///         on the order of bodies or contacts.
+///         on the order of bodies or contacts. With params.underLoad, addStableUnderLoad adds
+///         its verdicts.
 /// \throws std::invalid_argument when a manifold names a body outside the world, or a
-///         tolerance is negative, not finite, or normalTolerance >= 1.
+///         tolerance is negative, not finite, or normalTolerance >= 1; std::runtime_error from
+///         addStableUnderLoad (a build without GLPK).
 /// \thesis{§5.4}, \alg{SETGEOMETRICALLYSTABLE L1-L20}; the deviations are in the
 /// chapter page \ref chapter_geometric_stability.
 std::vector<char> setGeometricallyStable(const World& world,

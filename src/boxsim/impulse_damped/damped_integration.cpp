@@ -35,7 +35,9 @@ std::map<std::string, std::string> DampedIntegrationStepper::parameters() const 
       {"damp", params_.damp ? "on" : "off"},
       {"damp_colliding_bodies", params_.dampCollidingBodies ? "on" : "off"},
       {"fix_contact_constraints", params_.fixContactConstraints ? "on" : "off"},
-      {"geometric_stability", params_.useGeometricStability ? "on" : "off"},
+      {"geometric_stability", !params_.useGeometricStability            ? "off"
+                                  : params_.geometricStability.underLoad ? "under_load"
+                                                                         : "thesis"},
       {"k1_rate_per_s", shortestText(d.linearRate)},
       {"k2_rate_per_s", shortestText(d.angularRate)},
       {"k3_rate_per_s", shortestText(d.alignedAngularRate)},

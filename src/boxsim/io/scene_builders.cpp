@@ -105,6 +105,31 @@ int addBridge(World& world, bool withRightSupport) {
   return withRightSupport ? 3 : 2;
 }
 
+int addFig6_4Staircase(World& world, double top3X) {
+  addBox(world, "block0", kUnitHalf, Vec3(0.0, 0.5, 0.0));
+  addBox(world, "block1", kUnitHalf, Vec3(0.15, 1.5, 0.0));
+  addBox(world, "block2", kUnitHalf, Vec3(0.45, 2.5, 0.0));
+  addBox(world, "block3", kUnitHalf, Vec3(top3X, 3.5, 0.0));
+  return 4;
+}
+
+int addFig6_5HeavyBridge(World& world, double topMass, double armMass) {
+  // RigidBody::box refuses a mass that is not finite and > 0.
+  const Vec3 armHalf(1.0, 0.25, 0.5), topHalf(1.5, 0.5, 0.5);
+  for (const auto& [side, sign] : {std::pair("left", -1.0), {"right", 1.0}}) {
+    addBox(world, std::string("pedestal_") + side, kUnitHalf, Vec3(sign, 0.5, 0.0));
+    RigidBody arm = RigidBody::box(armHalf, armMass);
+    arm.s.x = Vec3(2.0 * sign, 1.25, 0.0);
+    arm.updateDerived();
+    world.add(arm, std::string("arm_") + side);
+  }
+  RigidBody top = RigidBody::box(topHalf, topMass);
+  top.s.x = Vec3(0.0, 2.0, 0.0);
+  top.updateDerived();
+  world.add(top, "top");
+  return 5;
+}
+
 int addFig5_1Row(World& world, const Vec3& origin) {
   const char* names[] = {"A", "B", "C", "D", "E"};
   const double x[] = {0.0, 1.2, 2.4, 3.6, 4.64};

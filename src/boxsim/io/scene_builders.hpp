@@ -92,6 +92,25 @@ int addBoxOnWiderBox(World& world, const Quat& topOrientation = Quat::Identity()
 /// 0.5 m apart, and a 2 × 1 × 1 m box "bridge" lying across them, two of its bottom corners on
 /// each. Stable with both supports, not with the left alone. 1 kg each. Returns the count.
 int addBridge(World& world, bool withRightSupport = true);
+/// \thesis{Fig. 6.4} as we read it, "a series of blocks [that] could be treated as one heavier
+/// object": unit cubes "block0" on the plane y = 0 at x = 0 and "block1" to "block3" stacked on
+/// it, each shifted along +x from the one below (centres at x = 0.15, 0.45 and 0.8 m, or
+/// x3 = top3X), so the top block reaches 0.8 m past the bottom one's edge. None but block0
+/// passes §5.4's rule (each overhangs its support); as long as the blocks above every level,
+/// taken as one body, have their centre of mass over that level's support (0.625 over
+/// [−0.05, 0.65] and 0.467 over [−0.35, 0.5] with the defaults; top3X > 0.85 breaks the
+/// first), they are stable under load. 1 kg each. Returns 4.
+int addFig6_4Staircase(World& world, double top3X = 0.8);
+/// \thesis{Fig. 6.5} as we read it, "a heavy block resting across two separate supports":
+/// unit cubes "pedestal_left" and "pedestal_right" on the plane y = 0 at x = ∓1; on each a
+/// 2 × 0.5 × 1 m arm ("arm_left", "arm_right", armMass kg) centred at x = ∓2, which rests on
+/// its pedestal over x ∈ [1, 1.5] (mirrored) with its centre 0.5 m beyond the pedestal's
+/// outer edge, so it would tip outward alone; and a 3 × 1 × 1 m block "top" of topMass kg
+/// across both arms (on x ∈ [1, 1.5] of each). The top's weight on the arms' inner ends holds
+/// them when topMass/2 × 0.5 m ≥ armMass × 0.5 m: stable under load for topMass ≥ 2 armMass,
+/// derived by hand (moments about the pedestal's outer edge). Returns 5; throws
+/// std::invalid_argument on a mass that is not finite and > 0.
+int addFig6_5HeavyBridge(World& world, double topMass, double armMass = 1.0);
 
 /// Beyond the thesis (Coulomb friction, impulse chapter): an immovable 40 × 1 × 10 m plank
 /// "incline" through the origin tilted by `degrees` about z (rising towards +x), and a unit
