@@ -324,6 +324,16 @@ TEST_CASE("Technique options reach the stepper and its header, and options a met
   const Result noCcd = runBoxsim(kDir, "run " + die + " --method impulse --continuous-collision on --out " + refused);
   CHECK(noCcd.status != 0);
   CHECK_THAT(noCcd.stderrText, Contains("takes no continuous collision option"));
+  // Geometric stability: the analytic method's default is off, damped integration's the
+  // thesis' rule; under_load is taken by both, refused by the others.
+  CHECK(boxsim::readTrajectory(out).meta.at("geometric_stability") == "thesis");
+  const Result load = runBoxsim(kDir, "run " + die + " --method analytic --duration 0.1 --geometric-stability under_load --out " + out);
+  REQUIRE(load.status == 0);
+  CHECK(boxsim::readTrajectory(out).meta.at("geometric_stability") == "under_load");
+  const Result noLoad = runBoxsim(kDir, "run " + die + " --method impulse --geometric-stability thesis --out " + refused);
+  CHECK(noLoad.status != 0);
+  CHECK_THAT(noLoad.stderrText, Contains("takes no geometric stability option"));
+  CHECK_FALSE(fs::exists(refused));
 }
 
 TEST_CASE("boxsim render --colour colours a named body, and a bad name or colour exits non-zero",

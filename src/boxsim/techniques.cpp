@@ -14,12 +14,13 @@ namespace boxsim {
 namespace {
 
 /// Throws std::invalid_argument naming the first option given that `method` does not take:
-/// the impulse step's (contact normal, contact gathering) unless `takesImpulseOptions`, and
-/// those of damped integration alone (sleep, chatter detection, continuous collision,
-/// plausibility seed).
+/// the impulse step's (contact normal, contact gathering) unless `takesImpulseOptions`,
+/// geometric stability unless `takesGeometricStability`, and those of damped integration alone
+/// (sleep, chatter detection, continuous collision, plausibility seed).
 void refuseOptions(const std::string& method, const TechniqueOptions& options,
-                   bool takesImpulseOptions) {
+                   bool takesImpulseOptions, bool takesGeometricStability = false) {
   const std::pair<bool, const char*> notTaken[] = {
+      {!takesGeometricStability && options.geometricStability.has_value(), "geometric stability"},
       {!takesImpulseOptions && options.contactNormal.has_value(), "contact normal"},
       {!takesImpulseOptions && options.contactGathering.has_value(), "contact gathering"},
       {options.sleep.has_value(), "sleep"},
@@ -47,9 +48,14 @@ std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueO
     return std::make_unique<BasicCollidingStepper>(params);
   }
   if (method == "analytic") {
-    refuseOptions(method, options, /*takesImpulseOptions=*/false);
+    refuseOptions(method, options, /*takesImpulseOptions=*/false, /*takesGeometricStability=*/true);
     AnalyticParams params;
     if (options.integrator) params.loop.integrator = *options.integrator;
+    if (options.geometricStability) {
+      params.useGeometricStability = *options.geometricStability != GeometricStabilityMode::Off;
+      params.geometricStability.underLoad =
+          *options.geometricStability == GeometricStabilityMode::UnderLoad;
+    }
     return std::make_unique<AnalyticStepper>(params);
   }
   for (const auto& [variant, name] : kTimewarpMethodNames) {
@@ -72,6 +78,11 @@ std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueO
     DampedIntegrationParams params;
     if (options.contactNormal) params.impulse.normalModel = *options.contactNormal;
     if (options.contactGathering) params.impulse.gathering = *options.contactGathering;
+    if (options.geometricStability) {
+      params.useGeometricStability = *options.geometricStability != GeometricStabilityMode::Off;
+      params.geometricStability.underLoad =
+          *options.geometricStability == GeometricStabilityMode::UnderLoad;
+    }
     if (options.sleep) params.sleep.enabled = *options.sleep;
     if (options.chatterDetection) params.sleep.chatterDetection = *options.chatterDetection;
     if (options.continuousCollision) params.continuousCollision.enabled = *options.continuousCollision;

@@ -10,6 +10,7 @@
 
 #include "boxsim/core/integrator.hpp"
 #include "boxsim/core/stepper.hpp"
+#include "boxsim/geometric_stability/geometric_stability.hpp"
 #include "boxsim/impulse_damped/impulse_params.hpp"
 
 namespace boxsim {
@@ -25,6 +26,9 @@ struct TechniqueOptions {
   /// How the impulse-based techniques gather contacts at predicted positions
   /// (contact_gathering.hpp); empty: default (once per step).
   std::optional<ContactGatheringMode> contactGathering;
+  /// Geometric stability (\thesis{§5.4}) of the analytic method (default off) and of damped
+  /// integration (default thesis); under_load adds stability under load (\thesis{§6.3.1}).
+  std::optional<GeometricStabilityMode> geometricStability;
   /// Computational stability (sleeping, \thesis{§4.5}) of damped integration; empty: default (on).
   std::optional<bool> sleep;
   /// Chatter detected from history (\thesis{§6.3.1}; SleepParams::chatterDetection) of damped

@@ -27,6 +27,7 @@ struct RunArgs {
   std::string integrator;  // empty: the method's default
   std::string contactNormal;  // empty: the method's default
   std::string contactGathering;  // empty: the method's default
+  std::string geometricStability;  // off, thesis, under_load or empty (the method's default)
   std::string sleep;          // "on", "off" or empty (the method's default)
   std::string chatterDetection;  // "on", "off" or empty (the method's default)
   std::string continuousCollision;  // "on", "off" or empty (the method's default)
@@ -84,6 +85,8 @@ TechniqueOptions techniqueOptions(const RunArgs& args) {
   if (!args.contactNormal.empty()) options.contactNormal = parseContactNormalModel(args.contactNormal);
   if (!args.contactGathering.empty())
     options.contactGathering = parseContactGathering(args.contactGathering);
+  if (!args.geometricStability.empty())
+    options.geometricStability = parseGeometricStabilityMode(args.geometricStability);
   if (!args.sleep.empty()) options.sleep = args.sleep == "on";
   if (!args.chatterDetection.empty()) options.chatterDetection = args.chatterDetection == "on";
   if (!args.continuousCollision.empty())
@@ -178,6 +181,12 @@ void addRunCommand(CLI::App& app) {
                   "(default, one narrow phase per step, first-order prediction), every_pass "
                   "(Alg. A.2 as written)")
       ->check(CLI::IsMember({"once_per_step", "every_pass"}));
+  cmd->add_option("--geometric-stability", args->geometricStability,
+                  "Bodies that gravity and frictionless contact cannot move (analytic: left out "
+                  "of the contact forces; damped: COLLIDE L11-L14): off, thesis (§5.4's rule), "
+                  "under_load (also boxes held by the loads they carry, §6.3.1 Figs. 6.4-6.5). "
+                  "Default: off for analytic, thesis for damped")
+      ->check(CLI::IsMember({"off", "thesis", "under_load"}));
   cmd->add_option("--sleep", args->sleep, "Sleeping of bodies at rest (damped): on (default), off")
       ->check(CLI::IsMember({"on", "off"}));
   cmd->add_option("--chatter-detection", args->chatterDetection,
