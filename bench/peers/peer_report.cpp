@@ -17,8 +17,9 @@ namespace {
 constexpr const char* kBoxsim = "boxsim damped";
 /// The boxsim rows the summary and the aims speak of: the thesis' frictionless damped
 /// integration, the same with the peers' Coulomb friction (the like-for-like row), and with
-/// chatter detected from history (§6.3.1).
-constexpr const char* kBoxsimRows[] = {"boxsim damped", "boxsim damped μ", "boxsim damped chatter"};
+/// chatter detected from history and with stability under load (both §6.3.1).
+constexpr const char* kBoxsimRows[] = {"boxsim damped", "boxsim damped μ", "boxsim damped chatter",
+                                       "boxsim damped under load"};
 
 std::string fixed(double value, int digits) {
   if (std::isnan(value)) return "–";
@@ -359,7 +360,9 @@ std::string markdownPage(const std::vector<SceneResults>& scenes, const RunSetup
       << "friction on every box (the impulse chapter, \"Coulomb friction\"); *boxsim damped chatter* "
       << "is the frictionless one with chatter detected from history, which puts bodies whose "
       << "last half second went nowhere to sleep (§6.3.1; the impulse chapter, \"Chatter detected "
-      << "from history\").\n";
+      << "from history\"); *boxsim damped under load* is the frictionless one whose geometric "
+      << "stability also holds boxes that the loads they carry keep in place (§6.3.1, Figs. 6.4 and "
+      << "6.5; the geometric stability chapter, \"Stability under load\").\n";
   return out.str();
 }
 

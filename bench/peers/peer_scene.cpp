@@ -48,8 +48,10 @@ class BoxsimEngine : public PeerEngine {
  public:
   /// `engine` is a method, optionally with a contact gathering after a slash
   /// ("damped/every_pass"), optionally ending in "+friction": every body then gets the scene's
-  /// Coulomb friction, as the peers have it ("damped+friction"), and in "+chatter": chatter
-  /// detected from history (SleepParams::chatterDetection, "damped+chatter").
+  /// Coulomb friction, as the peers have it ("damped+friction"), in "+chatter": chatter
+  /// detected from history (SleepParams::chatterDetection, "damped+chatter"), and in
+  /// "+under_load": geometric stability with stability under load (\thesis{§6.3.1},
+  /// "damped+under_load"); the suffixes in any order.
   explicit BoxsimEngine(std::string engine) {
     const auto strip = [&engine](const std::string& plus) {
       const bool ends = engine.size() > plus.size() &&
@@ -57,10 +59,14 @@ class BoxsimEngine : public PeerEngine {
       if (ends) engine.erase(engine.size() - plus.size());
       return ends;
     };
-    bool chatter = strip("+chatter");  // either order: damped+friction+chatter, damped+chatter+friction
-    friction_ = strip("+friction");
-    chatter = strip("+chatter") || chatter;
-    if (chatter) options_.chatterDetection = true;
+    for (bool stripped = true; stripped;) {
+      const bool chatter = strip("+chatter"), friction = strip("+friction"),
+                 underLoad = strip("+under_load");
+      if (chatter) options_.chatterDetection = true;
+      if (friction) friction_ = true;
+      if (underLoad) options_.geometricStability = GeometricStabilityMode::UnderLoad;
+      stripped = chatter || friction || underLoad;
+    }
     const std::size_t slash = engine.find('/');
     method_ = engine.substr(0, slash);
     if (slash != std::string::npos) {
@@ -71,13 +77,15 @@ class BoxsimEngine : public PeerEngine {
   }
   std::string name() const override {
     return "boxsim " + method_ + (gathering_.empty() ? "" : " " + gathering_) + (friction_ ? " μ" : "") +
-           (options_.chatterDetection.value_or(false) ? " chatter" : "");
+           (options_.chatterDetection.value_or(false) ? " chatter" : "") +
+           (options_.geometricStability == GeometricStabilityMode::UnderLoad ? " under load" : "");
   }
   std::string settings() const override {
     std::string text;
     for (const auto& [key, value] : stepper_->parameters())
       if (key == "integrator" || key == "sleep" || key == "contact_gathering" ||
-          (key == "chatter_detection" && value == "on"))
+          (key == "chatter_detection" && value == "on") ||
+          (key == "geometric_stability" && value == "under_load"))
         text += (text.empty() ? "" : ", ") + key + " " + value;
     return (text.empty() ? "defaults" : text) +
            (friction_ ? ", Coulomb friction as the peers (patch friction at each contact's centroid)"

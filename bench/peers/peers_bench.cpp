@@ -124,7 +124,8 @@ std::unique_ptr<PeerEngine> makeEngine(const std::string& name) {
 /// (frictionless as the thesis, and with the peers' friction) and every peer found, with Bullet's CCD too where a box is launched.
 std::vector<std::string> enginesOf(const SceneSpec& spec, const std::vector<std::string>& asked) {
   if (!asked.empty()) return asked;
-  std::vector<std::string> engines = {"damped", "damped+friction", "damped+chatter"};
+  std::vector<std::string> engines = {"damped", "damped+friction", "damped+chatter",
+                                      "damped+under_load"};
 #ifdef BOXSIM_HAVE_BULLET
   engines.push_back("bullet");
   if (spec.launches) engines.push_back("bullet/ccd");
@@ -204,8 +205,9 @@ int main(int argc, char** argv) {
                  "Engine (repeatable): a boxsim method (damped, impulse, ...), optionally with a "
                  "contact gathering after a slash (damped/every_pass), and '+friction' for the "
                  "peers' Coulomb friction (damped+friction), '+chatter' for chatter detected from "
-                 "history (damped+chatter); bullet, bullet/ccd, ode (default: damped, "
-                 "damped+friction, damped+chatter and every peer found, Bullet's CCD too on the "
+                 "history (damped+chatter), '+under_load' for stability under load "
+                 "(damped+under_load); bullet, bullet/ccd, ode (default: damped, damped+friction, "
+                 "damped+chatter, damped+under_load and every peer found, Bullet's CCD too on the "
                  "shot pyramids)");
   app.add_option("--restitution", restitution, "Restitution of every scene (default: each scene's own)")
       ->check(CLI::Range(0.0, 1.0));

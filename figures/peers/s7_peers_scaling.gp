@@ -14,7 +14,7 @@ stamp = system("sed -n 's/^# date: \\(.*\\)/\\1/p' ".data)
 commit = system("sed -n 's/^# commit: \\(.*\\)/\\1/p' ".data)
 engines = system("grep -v '^#' ".data." | sed 's/^[0-9]* \"\\([^\"]*\\)\".*/\\1/' | awk '!seen[$0]++' | tr ' ' '_' | tr '\\n' ' '")
 stats data using 1:(strcol(2) eq "boxsim damped" ? $3 : NaN) nooutput name "D"
-colour(i) = word("#d62728 #1f77b4 #2ca02c #ff7f0e #9467bd #8c564b", i)
+colour(i) = word("#d62728 #1f77b4 #2ca02c #ff7f0e #9467bd #8c564b #e377c2 #7f7f7f", i)
 label(e) = system("echo '".e."' | tr '_' ' '")
 # One engine's rows alone, so its points join into one line.
 rows(e) = "< grep -F '\"".label(e)."\"' ".data
