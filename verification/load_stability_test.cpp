@@ -65,6 +65,31 @@ World heavyBridge(double topMass, double armMass = 1.0) {
   return world;
 }
 
+/// Fig. 6.5 with the given top, and Fig. 6.4's staircase 5 m beside it (along z).
+World bridgeAndStaircase(double topMass) {
+  World world = heavyBridge(topMass);
+  World staircase;
+  addFig6_4Staircase(staircase);
+  for (std::size_t k = 0; k < staircase.bodies.size(); ++k) {
+    RigidBody b = staircase.bodies[k];
+    b.s.x.z() += 5.0;
+    b.updateDerived();
+    world.add(b, staircase.names[k]);
+  }
+  return world;
+}
+
+/// A unit cube of 1 kg turned 20° about z with its lowest edge on the plane y = planeY, its
+/// centre over (x, z) = (0, z): resting on an edge, it topples.
+RigidBody tiltedCube(double planeY, double z) {
+  RigidBody tilted = RigidBody::box(Vec3::Constant(0.5), 1.0);
+  const double angle = 20.0 * kPi / 180.0;
+  tilted.s.q = Quat(Eigen::AngleAxisd(angle, Vec3::UnitZ()));
+  tilted.s.x = Vec3(0.0, planeY + 0.5 * (std::cos(angle) + std::sin(angle)), z);
+  tilted.updateDerived();
+  return tilted;
+}
+
 }  // namespace
 
 TEST_CASE("Fig. 6.4: a staircase of overhanging blocks is stable as one heavier object",
@@ -123,12 +148,7 @@ TEST_CASE("Only boxes whose loads are all known are judged under load",
   World world = heavyBridge(4.0);
   REQUIRE(classify(world).report.bodiesAdded == 3);
   SECTION("a cube tilted onto the top brings an unknown load: none is judged") {
-    RigidBody tilted = RigidBody::box(Vec3::Constant(0.5), 1.0);
-    const double angle = 20.0 * kPi / 180.0;
-    tilted.s.q = Quat(Eigen::AngleAxisd(angle, Vec3::UnitZ()));
-    tilted.s.x = Vec3(0.0, 2.5 + 0.5 * (std::cos(angle) + std::sin(angle)), 0.0);
-    tilted.updateDerived();
-    world.add(tilted, "tilted");
+    world.add(tiltedCube(2.5, 0.0), "tilted");
     const Verdict v = classify(world);
     CHECK(named(world, v.flags, kStableUnderLoad).empty());
     CHECK(v.report.components == 0);
@@ -218,23 +238,8 @@ TEST_CASE("The analytic method with stability under load accelerates every body 
           "[geometric_stability][under_load][analytic]") {
   // Fig. 6.5 held by its heavy top, Fig. 6.4's staircase beside it, and a cube tilted 20° onto
   // an edge on the ground beside them, toppling (a non-zero acceleration).
-  World world = heavyBridge(4.0);
-  const int before = static_cast<int>(world.bodies.size());
-  World staircase;
-  addFig6_4Staircase(staircase);
-  for (std::size_t k = 0; k < staircase.bodies.size(); ++k) {
-    RigidBody b = staircase.bodies[k];
-    b.s.x.z() += 5.0;
-    b.updateDerived();
-    world.add(b, staircase.names[k]);
-  }
-  RigidBody tilted = RigidBody::box(Vec3::Constant(0.5), 1.0);
-  const double angle = 20.0 * kPi / 180.0;
-  tilted.s.q = Quat(Eigen::AngleAxisd(angle, Vec3::UnitZ()));
-  tilted.s.x = Vec3(0.0, 0.5 * (std::cos(angle) + std::sin(angle)), -5.0);
-  tilted.updateDerived();
-  world.add(tilted, "tilted");
-  REQUIRE(static_cast<int>(world.bodies.size()) == before + 5);
+  World world = bridgeAndStaircase(4.0);
+  world.add(tiltedCube(0.0, -5.0), "tilted");
 
   AnalyticParams full;
   full.driftCorrection = false;
@@ -279,15 +284,7 @@ TEST_CASE("Simulated, the heavy bridge stands and the light one falls",
 
 TEST_CASE("Stability under load does not depend on the order of bodies or contacts",
           "[geometric_stability][under_load]") {
-  World world = heavyBridge(3.0);
-  World staircase;
-  addFig6_4Staircase(staircase);
-  for (std::size_t k = 0; k < staircase.bodies.size(); ++k) {
-    RigidBody b = staircase.bodies[k];
-    b.s.x.z() += 5.0;
-    b.updateDerived();
-    world.add(b, staircase.names[k]);
-  }
+  const World world = bridgeAndStaircase(3.0);
   const std::vector<char> flags = classify(world).flags;
   std::vector<int> order(world.bodies.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);

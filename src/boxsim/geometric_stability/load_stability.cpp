@@ -46,8 +46,8 @@ bool isLevel(const RigidBody& body, double tolerance) {
   return 1.0 - std::abs(body.R(1, body.mostVerticalAxis())) <= tolerance;
 }
 
-/// Smaller half extent of the face a level box rests on, m.
-double bottomHalfExtent(const RigidBody& body) {
+/// Smaller half extent of the face a level box rests on, m (the margin; unused without GLPK).
+[[maybe_unused]] double bottomHalfExtent(const RigidBody& body) {
   const int k = body.mostVerticalAxis();
   return std::min(body.halfExtents[(k + 1) % 3], body.halfExtents[(k + 2) % 3]);
 }
