@@ -336,6 +336,36 @@ TEST_CASE("Of damped integration's techniques, damping alone stops the chatter o
     }
 }
 
+TEST_CASE("A box whose centre lies past its support's edge tips off under damped integration, "
+          "and one whose centre lies over it stays put",
+          "[impulse_damped][damping][support]") {
+  // A unit cube (1 kg) set at rest on another with its centre d beyond the lower cube's edge
+  // (x = 0.5 m): statics says it falls for every d > 0 (the weight's line of action misses the
+  // support), and stands for d < 0. A.2 as written holds it at every d up to 0.5 m:
+  // DAMPENOBJECTS L7-L9 take the vertical velocity gravity gives a face-down box
+  // (DampingParams::supportTest). Measured over 3 s: the top cube's centre at 1.5 m, or fallen
+  // below 1.0 m (on its side against the lower cube or on the ground).
+  const auto topHeightAfter = [](double d, bool supportTest) {
+    World world = groundWorld();
+    addBox(world, "lower", Vec3::Constant(0.5), Vec3(0.0, 0.5, 0.0));
+    const int top = addBox(world, "upper", Vec3::Constant(0.5), Vec3(0.5 + d, 1.5, 0.0));
+    DampedIntegrationParams params;
+    params.damping.supportTest = supportTest;
+    DampedIntegrationStepper stepper(params);
+    for (int k = 0; k < 3 * 60; ++k) stepper.step(world, kDt);
+    return world.bodies[static_cast<std::size_t>(top)].s.x.y();
+  };
+  for (const double d : {0.02, 0.1, 0.3, 0.5}) {
+    INFO("centre " << d << " m past the edge");
+    CHECK(topHeightAfter(d, true) < 1.0);
+    CHECK(topHeightAfter(d, false) > 1.49);  // A.2 as written: held
+  }
+  for (const double d : {-0.02, -0.3}) {
+    INFO("centre " << -d << " m inside the edge");
+    CHECK(topHeightAfter(d, true) == 1.5);
+  }
+}
+
 TEST_CASE("Fig. 5.2: damping slows a box sliding on another but never drags the lower box, "
           "so the pair's momentum is lost, not shared",
           "[impulse_damped][damping][fig5_2]") {

@@ -41,6 +41,7 @@ std::map<std::string, std::string> DampedIntegrationStepper::parameters() const 
       {"k3_rate_per_s", shortestText(d.alignedAngularRate)},
       {"aligned_deg", shortestText(d.alignedAngleDeg)},
       {"eps3_g_dt", shortestText(d.verticalVelocityEps)},
+      {"damp_support_test", d.supportTest ? "on" : "off"},
       {"eps4_deg_per_s", shortestText(d.tiltRateDegPerS)},
       {"eps5_g_dt", shortestText(d.linearSmallEps)},
       {"k5", shortestText(d.linearSmallFactor)},
@@ -158,7 +159,15 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   integrateVelocities(world, dt);
   // DAMPEDINTEGRATION L4: DAMPENOBJECTS, whose L22 integrates the positions.
   if (params_.damp) {
-    dampenObjects(world, dt, touched, params_.damping, params_.impulse.integrator);
+    // The support test reads the contacts of the poses the step started from, which L1-L3 have
+    // not moved: the last step's final contacts, or on a first step (or a world with other
+    // bodies) a narrow phase of its own.
+    std::vector<char> resting;
+    if (params_.damping.supportTest) {
+      if (lastContactsBodies_ != n) lastContacts_ = findContacts(world, margin);
+      resting = centreOverSupport(world, lastContacts_, params_.sleep.supportNormalY);
+    }
+    dampenObjects(world, dt, touched, params_.damping, params_.impulse.integrator, resting);
   } else {
     // DAMPENOBJECTS L22: without damping, its position update alone.
     predictPositions(world, dt, Vec3::Zero(), params_.impulse.integrator);
@@ -166,6 +175,10 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   clock.lap(&DampedStepProfile::velocitiesAndDamping);
   // DAMPEDINTEGRATION L5: FIXCONTACTCONSTRAINTS, and the contacts after it.
   const std::vector<ContactManifold> contacts = fixContacts(world, dt, margin);
+  if (params_.damping.supportTest) {
+    lastContacts_ = contacts;
+    lastContactsBodies_ = n;
+  }
   clock.lap(&DampedStepProfile::fixContacts);
   // DAMPEDINTEGRATION L6: SETGEOMETRICALLYSTABLE.
   if (params_.useGeometricStability) {

@@ -152,6 +152,10 @@ class DampedIntegrationStepper final : public Stepper {
   ContactGathering gathering_;
   VisualPlausibility plausibility_;
   std::vector<char> stable_;
+  // The contacts at the end of the last step, whose poses the next step starts from: the support
+  // test of DAMPENOBJECTS reads them (DampingParams::supportTest). Empty before the first step.
+  std::vector<ContactManifold> lastContacts_;
+  std::size_t lastContactsBodies_ = 0;  // bodies of the world when lastContacts_ was found
   Sleeping sleeping_;
   DampedStepProfile* profile_ = nullptr;  ///< where stage times go, or none
 };
