@@ -9,6 +9,7 @@
 #include <string>
 
 #include "boxsim/collision/broad_phase.hpp"
+#include "boxsim/impulse_damped/centre_over_support.hpp"
 #include "boxsim/impulse_damped/fix_contact_constraints.hpp"
 
 namespace boxsim {
@@ -100,6 +101,16 @@ StepStats DampedIntegrationStepper::step(World& world, double dt) {
 }
 
 namespace {
+/// True when `world` has as many bodies as `poses` and each body's x and q are bitwise those.
+bool posesUnchanged(const World& world, const std::vector<std::pair<Vec3, Quat>>& poses) {
+  if (poses.size() != world.bodies.size()) return false;
+  for (std::size_t i = 0; i < poses.size(); ++i)
+    if (world.bodies[i].s.x != poses[i].first ||
+        world.bodies[i].s.q.coeffs() != poses[i].second.coeffs())
+      return false;
+  return true;
+}
+
 /// Adds the wall-clock time of each stage of a step to its slot of a profile, if there is one.
 class StageClock {
  public:
@@ -160,14 +171,17 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   // DAMPEDINTEGRATION L4: DAMPENOBJECTS, whose L22 integrates the positions.
   if (params_.damp) {
     // The support test reads the contacts of the poses the step started from, which L1-L3 have
-    // not moved: the last step's final contacts, or on a first step (or a world with other
-    // bodies) a narrow phase of its own.
-    std::vector<char> resting;
+    // not moved: the last step's final contacts, or on a first step (or in a world moved or
+    // changed since) a narrow phase of its own with the same margin.
+    std::vector<SupportVerdict> support;
     if (params_.damping.supportTest) {
-      if (lastContactsBodies_ != n) lastContacts_ = findContacts(world, margin);
-      resting = centreOverSupport(world, lastContacts_, params_.sleep.supportNormalY);
+      const double restingMargin = restingContactMargin(world, margin, dt);
+      if (!posesUnchanged(world, lastPoses_)) lastContacts_ = findContacts(world, restingMargin);
+      support = centreOverSupport(world, lastContacts_,
+                                  {params_.sleep.supportNormalY, params_.damping.alignedAngleDeg,
+                                   restingMargin});
     }
-    dampenObjects(world, dt, touched, params_.damping, params_.impulse.integrator, resting);
+    dampenObjects(world, dt, touched, params_.damping, params_.impulse.integrator, support);
   } else {
     // DAMPENOBJECTS L22: without damping, its position update alone.
     predictPositions(world, dt, Vec3::Zero(), params_.impulse.integrator);
@@ -177,7 +191,8 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   const std::vector<ContactManifold> contacts = fixContacts(world, dt, margin);
   if (params_.damping.supportTest) {
     lastContacts_ = contacts;
-    lastContactsBodies_ = n;
+    lastPoses_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) lastPoses_[i] = {world.bodies[i].s.x, world.bodies[i].s.q};
   }
   clock.lap(&DampedStepProfile::fixContacts);
   // DAMPEDINTEGRATION L6: SETGEOMETRICALLYSTABLE.

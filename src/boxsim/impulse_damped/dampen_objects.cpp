@@ -22,63 +22,6 @@ double quaternionDistance(const Quat& p, const Quat& q) {
 }
 }  // namespace
 
-std::vector<char> centreOverSupport(const World& world, const std::vector<ContactManifold>& contacts,
-                                    double supportNormalY) {
-  const std::size_t n = world.bodies.size();
-  std::vector<std::vector<Eigen::Vector2d>> points(n);
-  for (const ContactManifold& m : contacts)
-    for (const int upper : {m.a, m.b}) {
-      // The normal runs from a to b; seen from `upper` it must point up, from the other body to it.
-      const double up = upper == m.b ? m.normal.y() : -m.normal.y();
-      if (up <= supportNormalY) continue;
-      for (int k = 0; k < m.count; ++k)
-        points[upper].emplace_back(m.points[k].position.x(), m.points[k].position.z());
-    }
-  std::vector<char> over(n, 0);
-  const auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
-  };
-  for (std::size_t i = 0; i < n; ++i) {
-    std::vector<Eigen::Vector2d>& p = points[i];
-    if (p.empty()) continue;
-    const Eigen::Vector2d c(world.bodies[i].s.x.x(), world.bodies[i].s.x.z());
-    // The convex hull by Andrew's monotone chain, counterclockwise.
-    std::sort(p.begin(), p.end(), [](const Eigen::Vector2d& l, const Eigen::Vector2d& r) {
-      return l.x() < r.x() || (l.x() == r.x() && l.y() < r.y());
-    });
-    std::vector<Eigen::Vector2d> hull(2 * p.size());
-    std::size_t h = 0;
-    for (std::size_t k = 0; k < p.size(); ++k) {
-      while (h >= 2 && cross(hull[h - 2], hull[h - 1], p[k]) <= 0.0) --h;
-      hull[h++] = p[k];
-    }
-    for (std::size_t k = p.size() - 1, lower = h + 1; k-- > 0;) {
-      while (h >= lower && cross(hull[h - 2], hull[h - 1], p[k]) <= 0.0) --h;
-      hull[h++] = p[k];
-    }
-    hull.resize(h > 1 ? h - 1 : h);
-    // Over the hull: within 1e-9 m of every edge's inner side; a hull of one point or a segment
-    // (an edge or corner contact) by its distance to it.
-    constexpr double kTolerance = 1e-9;
-    bool inside = true;
-    if (hull.size() >= 3) {
-      for (std::size_t k = 0; k < hull.size() && inside; ++k) {
-        const Eigen::Vector2d& a = hull[k];
-        const Eigen::Vector2d& b = hull[(k + 1) % hull.size()];
-        inside = cross(a, b, c) >= -kTolerance * (b - a).norm();
-      }
-    } else {
-      const Eigen::Vector2d& a = hull.front();
-      const Eigen::Vector2d& b = hull.back();
-      const double length2 = (b - a).squaredNorm();
-      const double t = length2 > 0.0 ? std::clamp((c - a).dot(b - a) / length2, 0.0, 1.0) : 0.0;
-      inside = (a + t * (b - a) - c).norm() <= kTolerance;
-    }
-    over[i] = inside ? 1 : 0;
-  }
-  return over;
-}
-
 bool isYAxisAligned(const RigidBody& body, double angleDeg) {
   return upmostAxis(body).y() >= std::cos(angleDeg * kPi / 180.0);
 }
@@ -109,7 +52,7 @@ void tiltTowardsYAxis(RigidBody& body, double maxAngle) {
 
 void dampMomenta(World& world, double dt, const std::vector<char>& touched,
                  const DampingParams& params, DampingStats* stats,
-                 const std::vector<char>& resting) {
+                 const std::vector<SupportVerdict>& support) {
   const double u = world.gravity.norm() * dt;  // the velocity unit g Δt
   const double k1 = std::exp(-params.linearRate * dt);
   const double k2 = std::exp(-params.angularRate * dt);
@@ -129,9 +72,10 @@ void dampMomenta(World& world, double dt, const std::vector<char>& touched,
     // skips them, so that friction is not counted twice. The small-velocity tests below (L6-L21),
     // which bring bodies to rest, stay.
     const bool rates = o.friction.frictionless();
-    // DEVIATION(DAMPENOBJECTS L6-L10): with the support test, only a box whose centre lies over
-    // its support rests on a face (DampingParams::supportTest).
-    const bool overSupport = !params.supportTest || resting.empty() || resting[i];
+    // DEVIATION(DAMPENOBJECTS L6-L21): with the support test, the steps that bring a body to
+    // rest act only on a body whose centre lies over its support (DampingParams::supportTest).
+    const bool gated = params.supportTest && !support.empty();
+    const bool overSupport = !gated || support[i].over;
     const bool yAxisAligned = isYAxisAligned(o, params.alignedAngleDeg) && overSupport;
     if (rates) {
       o.s.P *= k1;
@@ -176,9 +120,9 @@ void dampMomenta(World& world, double dt, const std::vector<char>& touched,
 
 DampingStats dampenObjects(World& world, double dt, const std::vector<char>& touched,
                            const DampingParams& params, Integrator integrator,
-                           const std::vector<char>& resting) {
+                           const std::vector<SupportVerdict>& support) {
   DampingStats stats;
-  dampMomenta(world, dt, touched, params, &stats, resting);
+  dampMomenta(world, dt, touched, params, &stats, support);
   // DAMPENOBJECTS L22: integrateObjectPositions(Δt, STANDARD_GRAVITY) with the velocities as they
   // now are. STANDARD_GRAVITY is read as gravity applied the usual way, which L3 already did to the
   // velocities; adding g Δt again, as the passes' VELOCITY_PLUS_GRAVITY does for a prediction,
@@ -195,7 +139,8 @@ DampingStats dampenObjects(World& world, double dt, const std::vector<char>& tou
   for (std::size_t i = 0; i < world.bodies.size(); ++i) {
     RigidBody& o = world.bodies[i];
     if (o.immovable || !touched[i] || !isYAxisAligned(o, params.alignedAngleDeg)) continue;
-    if (params.supportTest && !resting.empty() && !resting[i]) continue;
+    // DEVIATION(DAMPENOBJECTS L23): with the support test, only over its support (as L6-L21).
+    if (params.supportTest && !support.empty() && !support[i].over) continue;
     const double ell = o.halfExtents.minCoeff();
     const double deltaPosition = (o.s.x - old[i].x).norm();
     const double deltaRotation = quaternionDistance(o.s.q, old[i].q);

@@ -7,8 +7,8 @@
 
 #include <vector>
 
-#include "boxsim/collision/contact.hpp"
 #include "boxsim/core/world.hpp"
+#include "boxsim/impulse_damped/centre_over_support.hpp"
 #include "boxsim/impulse_damped/impulse_params.hpp"
 
 namespace boxsim {
@@ -28,34 +28,26 @@ bool isYAxisAligned(const RigidBody& body, double angleDeg);
 /// with a face perpendicular to y (\alg{DAMPENOBJECTS L10} tiltTowardsYAxis).
 void tiltTowardsYAxis(RigidBody& body, double maxAngle);
 
-/// One flag per body of `world`: 1 when the horizontal projection of the body's centre of mass
-/// lies over the convex hull (in x, z) of its support points: the points of the manifolds of
-/// `contacts` whose normal, pointing from the other body to it, has y above `supportNormalY`
-/// (DampingParams::supportTest; the one-body test of geometric stability, \thesis{§5.4}). A
-/// centre within 1e-9 m of the hull's edge counts as over it.
-std::vector<char> centreOverSupport(const World& world, const std::vector<ContactManifold>& contacts,
-                                    double supportNormalY = 0.1);
-
 /// Scales the momenta of the bodies marked `touched` (one flag per body) as
 /// \alg{DAMPENOBJECTS L1-L21}, with the thresholds of `params` turned into momenta for each body:
 /// velocities in units of g Δt times the mass, angular velocities in units of g Δt / ℓ times (2/3)
 /// m ℓ² (ℓ the body's smallest half extent). Never raises a body's kinetic energy. Does not move
 /// bodies.
-/// `resting` (one flag per body, or empty for every body) marks the bodies whose centre lies over
-/// their support (centreOverSupport): with DampingParams::supportTest only those lose their
-/// vertical velocity and are tilted flat (L7-L10).
+/// `support` (one verdict per body, centreOverSupport, or empty: A.2 as written) says which
+/// bodies stand over their support: with DampingParams::supportTest, L6-L21 act only on those.
 void dampMomenta(World& world, double dt, const std::vector<char>& touched,
                  const DampingParams& params, DampingStats* stats = nullptr,
-                 const std::vector<char>& resting = {});
+                 const std::vector<SupportVerdict>& support = {});
 
 /// The whole of DAMPENOBJECTS (\alg{DAMPENOBJECTS L1-L28}): dampMomenta, then
 /// integrateObjectPositions with the current velocities (\alg{DAMPENOBJECTS L22}, predictPositions
 /// with `integrator`), then the snap of
 /// \alg{DAMPENOBJECTS L23-L28} for bodies in contact that lie with a face perpendicular to gravity.
-/// `resting` as for dampMomenta, for the snap too.
+/// `support` as for dampMomenta; with DampingParams::supportTest the snap too holds only bodies
+/// over their support.
 DampingStats dampenObjects(World& world, double dt, const std::vector<char>& touched,
                            const DampingParams& params,
                            Integrator integrator = Integrator::SemiImplicitEuler,
-                           const std::vector<char>& resting = {});
+                           const std::vector<SupportVerdict>& support = {});
 
 }  // namespace boxsim
