@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace boxsim {
 namespace {
@@ -149,6 +150,11 @@ std::vector<SupportVerdict> centreOverSupport(const World& world,
                                               const SupportTestParams& params) {
   const std::size_t n = world.bodies.size();
   std::vector<std::vector<Vec2>> support(n);
+  // Per body: the lowest and highest point of its supporting top faces over their patches, m,
+  // and whether every support so far was such a face.
+  std::vector<double> lowest(n, std::numeric_limits<double>::infinity());
+  std::vector<double> highest(n, -std::numeric_limits<double>::infinity());
+  std::vector<char> facesOnly(n, 1);
   for (const ContactManifold& m : contacts) {
     if (m.count == 0) continue;
     for (const int upper : {m.a, m.b}) {
@@ -163,6 +169,10 @@ std::vector<SupportVerdict> centreOverSupport(const World& world,
         const std::vector<Vec2> patch = contactPatch(bottom, top, params.contactBand);
         if (!patch.empty()) {
           points.insert(points.end(), patch.begin(), patch.end());
+          for (const Vec2& p : patch) {
+            lowest[upper] = std::min(lowest[upper], top.heightAt(p));
+            highest[upper] = std::max(highest[upper], top.heightAt(p));
+          }
           continue;
         }
       }
@@ -170,6 +180,7 @@ std::vector<SupportVerdict> centreOverSupport(const World& world,
       const double up = upper == m.b ? m.normal.y() : -m.normal.y();
       if (up <= params.supportNormalY) continue;
       // Any other contact: where the manifold touches.
+      facesOnly[upper] = 0;
       for (int k = 0; k < m.count; ++k)
         points.emplace_back(m.points[k].position.x(), m.points[k].position.z());
     }
@@ -180,6 +191,7 @@ std::vector<SupportVerdict> centreOverSupport(const World& world,
     if (support[i].empty()) continue;
     const Vec2 c(world.bodies[i].s.x.x(), world.bodies[i].s.x.z());
     verdicts[i].over = overHull(support[i], c, kTolerance);
+    verdicts[i].level = facesOnly[i] && highest[i] - lowest[i] <= params.levelTolerance;
   }
   return verdicts;
 }

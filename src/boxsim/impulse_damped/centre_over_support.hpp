@@ -25,6 +25,10 @@ struct SupportTestParams {
   /// margin the contacts were found with: the stepper passes the resting-contact margin,
   /// restingContactMargin, 3.2 mm for unit cubes at 60 Hz).
   double contactBand = 3.2e-3;
+  /// m, >= 0: the top faces a box lies on are level when, over the patches it touches them on,
+  /// their heights lie within this of each other: one horizontal plane (the contact margin,
+  /// 1e-3 of a unit cube's half side, is what the stepper passes).
+  double levelTolerance = 5e-4;
 };
 
 /// How one body stands on what supports it (centreOverSupport).
@@ -32,6 +36,11 @@ struct SupportVerdict {
   /// The xz projection of the centre of mass lies over the convex hull (in x, z) of the support
   /// region, within 1e-9 m.
   bool over = false;
+  /// The body lies face down on top faces only, and they are level (over the patches it
+  /// touches them on, within SupportTestParams::levelTolerance of one horizontal plane):
+  /// turning it flat about its centre (\alg{DAMPENOBJECTS L10}) keeps it on every one of them.
+  /// False with no support.
+  bool level = false;
 };
 
 /// For each body of `world` (one verdict per body, in body order), whether its centre of mass
@@ -48,7 +57,7 @@ struct SupportVerdict {
 ///    params.supportNormalY contributes its manifold's points (an edge or a corner on which the
 ///    box leans or balances); side contacts contribute nothing.
 /// A region of one point or a segment (a box balanced on an edge line) holds only a centre on it.
-/// A body with no support, and an immovable body, is not over it.
+/// A body with no support, and an immovable body, gets {false, false}.
 /// Deterministic: a function of the bodies' poses and of the set of manifolds.
 /// \thesis{§5.3} (the marks of a resting box), \thesis{§5.4} (its footnote's support hull);
 /// DampingParams::supportTest says why DAMPENOBJECTS needs it.

@@ -179,7 +179,7 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
       if (!posesUnchanged(world, lastPoses_)) lastContacts_ = findContacts(world, restingMargin);
       support = centreOverSupport(world, lastContacts_,
                                   {params_.sleep.supportNormalY, params_.damping.alignedAngleDeg,
-                                   restingMargin});
+                                   restingMargin, margin});
     }
     dampenObjects(world, dt, touched, params_.damping, params_.impulse.integrator, support);
   } else {

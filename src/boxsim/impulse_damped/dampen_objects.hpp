@@ -34,7 +34,8 @@ void tiltTowardsYAxis(RigidBody& body, double maxAngle);
 /// m ℓ² (ℓ the body's smallest half extent). Never raises a body's kinetic energy. Does not move
 /// bodies.
 /// `support` (one verdict per body, centreOverSupport, or empty: A.2 as written) says which
-/// bodies stand over their support: with DampingParams::supportTest, L6-L21 act only on those.
+/// bodies stand over their support: with DampingParams::supportTest, L6-L21 act only on those,
+/// and L10 only on those that lie on top faces of one level (SupportVerdict::level).
 void dampMomenta(World& world, double dt, const std::vector<char>& touched,
                  const DampingParams& params, DampingStats* stats = nullptr,
                  const std::vector<SupportVerdict>& support = {});

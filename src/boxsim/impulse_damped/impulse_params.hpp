@@ -142,7 +142,8 @@ struct DampingParams {
   /// snap of L23-L28 act only on a body whose centre of mass lies over its support region, the
   /// one-body test of geometric stability (\thesis{§5.4}, centreOverSupport: where its faces
   /// touch the top faces below, or its contact points with bodies below), read from the
-  /// contacts the step starts from. Off: \alg{A.2} as written.
+  /// contacts the step starts from; and L10 turns a box flat only when the faces it lies on are
+  /// level (SupportVerdict::level). Off: \alg{A.2} as written.
   bool supportTest = true;
   /// λ3, 1/s: the angular momentum of such a body then decays at this rate (k3,
   /// \alg{DAMPENOBJECTS L9}): 20/s, a tenth of a second to stop rocking.
