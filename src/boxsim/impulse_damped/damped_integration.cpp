@@ -9,6 +9,7 @@
 #include <string>
 
 #include "boxsim/collision/broad_phase.hpp"
+#include "boxsim/impulse_damped/centre_over_support.hpp"
 #include "boxsim/impulse_damped/fix_contact_constraints.hpp"
 
 namespace boxsim {
@@ -43,6 +44,7 @@ std::map<std::string, std::string> DampedIntegrationStepper::parameters() const 
       {"k3_rate_per_s", shortestText(d.alignedAngularRate)},
       {"aligned_deg", shortestText(d.alignedAngleDeg)},
       {"eps3_g_dt", shortestText(d.verticalVelocityEps)},
+      {"damp_support_test", d.supportTest ? "on" : "off"},
       {"eps4_deg_per_s", shortestText(d.tiltRateDegPerS)},
       {"eps5_g_dt", shortestText(d.linearSmallEps)},
       {"k5", shortestText(d.linearSmallFactor)},
@@ -101,6 +103,16 @@ StepStats DampedIntegrationStepper::step(World& world, double dt) {
 }
 
 namespace {
+/// True when `world` has as many bodies as `poses` and each body's x and q are bitwise those.
+bool posesUnchanged(const World& world, const std::vector<std::pair<Vec3, Quat>>& poses) {
+  if (poses.size() != world.bodies.size()) return false;
+  for (std::size_t i = 0; i < poses.size(); ++i)
+    if (world.bodies[i].s.x != poses[i].first ||
+        world.bodies[i].s.q.coeffs() != poses[i].second.coeffs())
+      return false;
+  return true;
+}
+
 /// Adds the wall-clock time of each stage of a step to its slot of a profile, if there is one.
 class StageClock {
  public:
@@ -160,7 +172,18 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   integrateVelocities(world, dt);
   // DAMPEDINTEGRATION L4: DAMPENOBJECTS, whose L22 integrates the positions.
   if (params_.damp) {
-    dampenObjects(world, dt, touched, params_.damping, params_.impulse.integrator);
+    // The support test reads the contacts of the poses the step started from, which L1-L3 have
+    // not moved: the last step's final contacts, or on a first step (or in a world moved or
+    // changed since) a narrow phase of its own with the same margin.
+    std::vector<SupportVerdict> support;
+    if (params_.damping.supportTest) {
+      const double restingMargin = restingContactMargin(world, margin, dt);
+      if (!posesUnchanged(world, lastPoses_)) lastContacts_ = findContacts(world, restingMargin);
+      support = centreOverSupport(world, lastContacts_,
+                                  {params_.sleep.supportNormalY, params_.damping.alignedAngleDeg,
+                                   restingMargin, margin});
+    }
+    dampenObjects(world, dt, touched, params_.damping, params_.impulse.integrator, support);
   } else {
     // DAMPENOBJECTS L22: without damping, its position update alone.
     predictPositions(world, dt, Vec3::Zero(), params_.impulse.integrator);
@@ -168,6 +191,11 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   clock.lap(&DampedStepProfile::velocitiesAndDamping);
   // DAMPEDINTEGRATION L5: FIXCONTACTCONSTRAINTS, and the contacts after it.
   const std::vector<ContactManifold> contacts = fixContacts(world, dt, margin);
+  if (params_.damping.supportTest) {
+    lastContacts_ = contacts;
+    lastPoses_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) lastPoses_[i] = {world.bodies[i].s.x, world.bodies[i].s.q};
+  }
   clock.lap(&DampedStepProfile::fixContacts);
   // DAMPEDINTEGRATION L6: SETGEOMETRICALLYSTABLE.
   if (params_.useGeometricStability) {

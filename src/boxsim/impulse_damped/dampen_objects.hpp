@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "boxsim/core/world.hpp"
+#include "boxsim/impulse_damped/centre_over_support.hpp"
 #include "boxsim/impulse_damped/impulse_params.hpp"
 
 namespace boxsim {
@@ -32,15 +33,22 @@ void tiltTowardsYAxis(RigidBody& body, double maxAngle);
 /// velocities in units of g Δt times the mass, angular velocities in units of g Δt / ℓ times (2/3)
 /// m ℓ² (ℓ the body's smallest half extent). Never raises a body's kinetic energy. Does not move
 /// bodies.
+/// `support` (one verdict per body, centreOverSupport, or empty: A.2 as written) says which
+/// bodies stand over their support: with DampingParams::supportTest, L6-L21 act only on those,
+/// and L10 only on those that lie on top faces of one level (SupportVerdict::level).
 void dampMomenta(World& world, double dt, const std::vector<char>& touched,
-                 const DampingParams& params, DampingStats* stats = nullptr);
+                 const DampingParams& params, DampingStats* stats = nullptr,
+                 const std::vector<SupportVerdict>& support = {});
 
 /// The whole of DAMPENOBJECTS (\alg{DAMPENOBJECTS L1-L28}): dampMomenta, then
 /// integrateObjectPositions with the current velocities (\alg{DAMPENOBJECTS L22}, predictPositions
 /// with `integrator`), then the snap of
 /// \alg{DAMPENOBJECTS L23-L28} for bodies in contact that lie with a face perpendicular to gravity.
+/// `support` as for dampMomenta; with DampingParams::supportTest the snap too holds only bodies
+/// over their support.
 DampingStats dampenObjects(World& world, double dt, const std::vector<char>& touched,
                            const DampingParams& params,
-                           Integrator integrator = Integrator::SemiImplicitEuler);
+                           Integrator integrator = Integrator::SemiImplicitEuler,
+                           const std::vector<SupportVerdict>& support = {});
 
 }  // namespace boxsim

@@ -134,6 +134,17 @@ struct DampingParams {
   /// ε3, g Δt: an aligned body whose vertical velocity is below this loses it
   /// (\alg{DAMPENOBJECTS L7-L8}). 2 g Δt: a resting box's chatter is about one g Δt.
   double verticalVelocityEps = 2.0;
+  /// DEVIATION(DAMPENOBJECTS L6-L21, L23): the marks of a resting box (\thesis{§5.3}: a face
+  /// perpendicular to gravity, small velocities) also fit a box that starts to tip off an edge
+  /// from rest, and L7-L9 then take away, step after step, the velocity gravity gives it, and
+  /// L18-L19 the small turn: a box whose centre lies past its support's edge stood for ever
+  /// (measured: centres up to 0.5 m past the edge of a unit cube). With this on, L6-L21 and the
+  /// snap of L23-L28 act only on a body whose centre of mass lies over its support region, the
+  /// one-body test of geometric stability (\thesis{§5.4}, centreOverSupport: where its faces
+  /// touch the top faces below, or its contact points with bodies below), read from the
+  /// contacts the step starts from; and L10 turns a box flat only when the faces it lies on are
+  /// level (SupportVerdict::level). Off: \alg{A.2} as written.
+  bool supportTest = true;
   /// λ3, 1/s: the angular momentum of such a body then decays at this rate (k3,
   /// \alg{DAMPENOBJECTS L9}): 20/s, a tenth of a second to stop rocking.
   double alignedAngularRate = 20.0;

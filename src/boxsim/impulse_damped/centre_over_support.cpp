@@ -1,0 +1,199 @@
+/// \file
+/// The support test of DAMPENOBJECTS (DampingParams::supportTest): is a body's centre of mass
+/// over the convex hull of what supports it.
+///
+/// A box lying face down on another's top face rests on the overlap of the two faces seen from
+/// above, the shaded patch; its manifold may hold fewer points (one, for an edge-edge axis):
+/// \verbatim
+///      upper box's bottom face          z
+///        +-----------+                  ^
+///        |   lower box's top face       |
+///        |     +-----|-----+            +--> x
+///        |     |/////|     |
+///        |  c  |/////|     |     c over the patch: rests;
+///        +-----|-----+     |     c beside it (as here): tips off
+///              +-----------+
+/// \endverbatim
+#include "boxsim/impulse_damped/centre_over_support.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace boxsim {
+namespace {
+
+using Vec2 = Eigen::Vector2d;  // a point of the xz plane: (x, z), m
+
+/// z component of (a − o) × (b − o) in the xz plane: > 0 when o, a, b turn counter-clockwise.
+double cross(const Vec2& o, const Vec2& a, const Vec2& b) {
+  return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
+}
+
+/// Convex hull of xz points, counter-clockwise, collinear points dropped (Andrew's monotone
+/// chain: a lexicographic sort, so the hull is a function of the point set alone). Collinear
+/// points give their two ends, one point itself.
+std::vector<Vec2> convexHull(std::vector<Vec2> p) {
+  std::sort(p.begin(), p.end(), [](const Vec2& l, const Vec2& r) {
+    return l.x() < r.x() || (l.x() == r.x() && l.y() < r.y());
+  });
+  p.erase(std::unique(p.begin(), p.end()), p.end());
+  if (p.size() < 3) return p;
+  std::vector<Vec2> hull(2 * p.size());
+  std::size_t h = 0;
+  for (const Vec2& q : p) {
+    while (h >= 2 && cross(hull[h - 2], hull[h - 1], q) <= 0.0) --h;
+    hull[h++] = q;
+  }
+  for (std::size_t k = p.size() - 1, lower = h + 1; k-- > 0;) {
+    while (h >= lower && cross(hull[h - 2], hull[h - 1], p[k]) <= 0.0) --h;
+    hull[h++] = p[k];
+  }
+  hull.resize(h - 1);  // the last point repeats the first
+  return hull;
+}
+
+/// A face of a box whose outward normal lies within the aligned angle of +y or −y.
+struct LevelFace {
+  std::vector<Vec2> outline;  ///< xz projection, counter-clockwise; empty: no such face
+  Vec3 centre = Vec3::Zero();  ///< m
+  Vec3 normal = Vec3::UnitY();  ///< outward, unit
+  /// Height of the face's plane above the xz point p, m.
+  double heightAt(const Vec2& p) const {
+    return centre.y() - (normal.x() * (p.x() - centre.x()) + normal.z() * (p.y() - centre.z())) /
+                            normal.y();
+  }
+};
+
+/// The face of `body` whose outward normal points up (`up` true) or down; an empty outline
+/// unless one of the body's axes lies within `alignedAngleDeg` of y.
+LevelFace levelFace(const RigidBody& body, bool up, double alignedAngleDeg) {
+  LevelFace face;
+  const int k = body.mostVerticalAxis();
+  if (std::abs(body.R(1, k)) < std::cos(alignedAngleDeg * kPi / 180.0)) return face;
+  // The axis k, turned to point the face's way.
+  const double sense = (body.R(1, k) > 0.0) == up ? 1.0 : -1.0;
+  face.normal = sense * body.R.col(k);
+  face.centre = body.s.x + body.halfExtents[k] * face.normal;
+  const Vec3 u = body.halfExtents[(k + 1) % 3] * body.R.col((k + 1) % 3);
+  const Vec3 v = body.halfExtents[(k + 2) % 3] * body.R.col((k + 2) % 3);
+  std::vector<Vec2> corners;
+  for (const double su : {1.0, -1.0})
+    for (const double sv : {1.0, -1.0}) {
+      const Vec3 c = face.centre + su * u + sv * v;
+      corners.emplace_back(c.x(), c.z());
+    }
+  face.outline = convexHull(std::move(corners));
+  return face;
+}
+
+/// The part of convex polygon `polygon` where the affine function f is >= 0 (one step of
+/// Sutherland-Hodgman); empty when there is none.
+template <class F>
+std::vector<Vec2> clipHalfPlane(const std::vector<Vec2>& polygon, const F& f) {
+  std::vector<Vec2> kept;
+  for (std::size_t k = 0; k < polygon.size(); ++k) {
+    const Vec2& p = polygon[k];
+    const Vec2& q = polygon[(k + 1) % polygon.size()];
+    const double fp = f(p);
+    const double fq = f(q);
+    if (fp >= 0.0) kept.push_back(p);
+    if ((fp >= 0.0) != (fq >= 0.0)) kept.push_back(p + (fp / (fp - fq)) * (q - p));
+  }
+  return kept;
+}
+
+/// Where the face `bottom` of one box lies on the face `top` of another, seen from above: their
+/// overlap in xz, cut to where the gap between their planes lies within ±`band` (m; the gap is
+/// an affine function of x and z, so each bound is a half plane). Empty when they do not meet.
+std::vector<Vec2> contactPatch(const LevelFace& bottom, const LevelFace& top, double band) {
+  std::vector<Vec2> patch = bottom.outline;
+  for (std::size_t e = 0; e < top.outline.size() && !patch.empty(); ++e) {
+    const Vec2& a = top.outline[e];
+    const Vec2& b = top.outline[(e + 1) % top.outline.size()];
+    patch = clipHalfPlane(patch, [&](const Vec2& p) { return cross(a, b, p); });
+  }
+  if (!patch.empty())
+    patch = clipHalfPlane(patch, [&](const Vec2& p) {
+      return band - (bottom.heightAt(p) - top.heightAt(p));
+    });
+  if (!patch.empty())  // and not sunk deeper than the band: the faces of two neighbours
+    patch = clipHalfPlane(patch, [&](const Vec2& p) {
+      return band + (bottom.heightAt(p) - top.heightAt(p));
+    });
+  return patch;
+}
+
+/// True when c lies in the convex hull of `points`, or within `tolerance` (m) of it.
+bool overHull(const std::vector<Vec2>& points, const Vec2& c, double tolerance) {
+  const std::vector<Vec2> hull = convexHull(points);
+  if (hull.size() >= 3) {
+    for (std::size_t k = 0; k < hull.size(); ++k) {
+      const Vec2& a = hull[k];
+      const Vec2& b = hull[(k + 1) % hull.size()];
+      if (cross(a, b, c) < -tolerance * (b - a).norm()) return false;
+    }
+    return true;
+  }
+  // A point, or a segment: an edge line or a corner.
+  const Vec2& a = hull.front();
+  const Vec2& b = hull.back();
+  const double length2 = (b - a).squaredNorm();
+  const double t = length2 > 0.0 ? std::clamp((c - a).dot(b - a) / length2, 0.0, 1.0) : 0.0;
+  return (a + t * (b - a) - c).norm() <= tolerance;
+}
+
+}  // namespace
+
+std::vector<SupportVerdict> centreOverSupport(const World& world,
+                                              const std::vector<ContactManifold>& contacts,
+                                              const SupportTestParams& params) {
+  const std::size_t n = world.bodies.size();
+  std::vector<std::vector<Vec2>> support(n);
+  // Per body: the lowest and highest point of its supporting top faces over their patches, m,
+  // and whether every support so far was such a face.
+  std::vector<double> lowest(n, std::numeric_limits<double>::infinity());
+  std::vector<double> highest(n, -std::numeric_limits<double>::infinity());
+  std::vector<char> facesOnly(n, 1);
+  for (const ContactManifold& m : contacts) {
+    if (m.count == 0) continue;
+    for (const int upper : {m.a, m.b}) {
+      if (world.bodies[upper].immovable) continue;
+      const int lower = upper == m.b ? m.a : m.b;
+      std::vector<Vec2>& points = support[upper];
+      // A face down on a face up: where the two faces touch, whatever axis the narrow phase took
+      // for the pair (a side face's, when a corner of one lies near the rim of the other).
+      const LevelFace bottom = levelFace(world.bodies[upper], false, params.alignedAngleDeg);
+      const LevelFace top = levelFace(world.bodies[lower], true, params.alignedAngleDeg);
+      if (!bottom.outline.empty() && !top.outline.empty()) {
+        const std::vector<Vec2> patch = contactPatch(bottom, top, params.contactBand);
+        if (!patch.empty()) {
+          points.insert(points.end(), patch.begin(), patch.end());
+          for (const Vec2& p : patch) {
+            lowest[upper] = std::min(lowest[upper], top.heightAt(p));
+            highest[upper] = std::max(highest[upper], top.heightAt(p));
+          }
+          continue;
+        }
+      }
+      // The normal runs from a to b; seen from `upper` it must point up, from the other body to it.
+      const double up = upper == m.b ? m.normal.y() : -m.normal.y();
+      if (up <= params.supportNormalY) continue;
+      // Any other contact: where the manifold touches.
+      facesOnly[upper] = 0;
+      for (int k = 0; k < m.count; ++k)
+        points.emplace_back(m.points[k].position.x(), m.points[k].position.z());
+    }
+  }
+  constexpr double kTolerance = 1e-9;  // m: rounding, and a centre exactly over an edge
+  std::vector<SupportVerdict> verdicts(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (support[i].empty()) continue;
+    const Vec2 c(world.bodies[i].s.x.x(), world.bodies[i].s.x.z());
+    verdicts[i].over = overHull(support[i], c, kTolerance);
+    verdicts[i].level = facesOnly[i] && highest[i] - lowest[i] <= params.levelTolerance;
+  }
+  return verdicts;
+}
+
+}  // namespace boxsim

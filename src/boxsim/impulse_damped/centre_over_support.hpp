@@ -1,0 +1,68 @@
+/// \file
+/// Whether a body's centre of mass lies over what supports it: the statics test that
+/// DAMPENOBJECTS' rest-bringing steps are gated by (DampingParams::supportTest), the one-body
+/// form of geometric stability's support hull (\thesis{§5.4}).
+#pragma once
+
+#include <vector>
+
+#include "boxsim/collision/contact.hpp"
+#include "boxsim/core/world.hpp"
+
+namespace boxsim {
+
+/// What counts as a body's support, and when a box lies face down on a face.
+struct SupportTestParams {
+  /// Unitless, in [0, 1): a contact supports the body it touches from below when its normal,
+  /// pointing from the other body to this one, has a y component above this
+  /// (SleepParams::supportNormalY, 0.1: side contacts do not support).
+  double supportNormalY = 0.1;
+  /// Degrees: a box lies on a face, and a body offers a face up, when one of its axes lies within
+  /// this angle of y (DampingParams::alignedAngleDeg, the checkYAxisAlignment of
+  /// \alg{DAMPENOBJECTS L3}).
+  double alignedAngleDeg = 3.0;
+  /// m, >= 0: a box's face touches another's where the gap between them lies within ± this (the
+  /// margin the contacts were found with: the stepper passes the resting-contact margin,
+  /// restingContactMargin, 3.2 mm for unit cubes at 60 Hz).
+  double contactBand = 3.2e-3;
+  /// m, >= 0: the top faces a box lies on are level when, over the patches it touches them on,
+  /// their heights lie within this of each other: one horizontal plane (the contact margin,
+  /// 1e-3 of a unit cube's half side, is what the stepper passes).
+  double levelTolerance = 5e-4;
+};
+
+/// How one body stands on what supports it (centreOverSupport).
+struct SupportVerdict {
+  /// The xz projection of the centre of mass lies over the convex hull (in x, z) of the support
+  /// region, within 1e-9 m.
+  bool over = false;
+  /// The body lies face down on top faces only, and they are level (over the patches it
+  /// touches them on, within SupportTestParams::levelTolerance of one horizontal plane):
+  /// turning it flat about its centre (\alg{DAMPENOBJECTS L10}) keeps it on every one of them.
+  /// False with no support.
+  bool level = false;
+};
+
+/// For each body of `world` (one verdict per body, in body order), whether its centre of mass
+/// lies over its support region, made from the manifolds of `contacts` (world indices, normals
+/// from a to b, as findContacts returns them with a margin of about params.contactBand):
+///  - a box lying face down (an axis within params.alignedAngleDeg of y) on a body that offers a
+///    face up in the same sense contributes the patch where the two faces touch: their overlap
+///    seen from above, where the gap between their planes lies within ±params.contactBand,
+///    whatever the manifold holds. The narrow phase may give such a pair a single point (a
+///    separating axis across two nearly parallel edges, an edge-edge contact), four of the
+///    patch's up to eight corners, or a side face's axis (a corner near the rim of a face), and
+///    none of these need hold the centre of a box resting on the patch;
+///  - any other contact whose normal, pointing from the other body to this one, has y above
+///    params.supportNormalY contributes its manifold's points (an edge or a corner on which the
+///    box leans or balances); side contacts contribute nothing.
+/// A region of one point or a segment (a box balanced on an edge line) holds only a centre on it.
+/// A body with no support, and an immovable body, gets {false, false}.
+/// Deterministic: a function of the bodies' poses and of the set of manifolds.
+/// \thesis{§5.3} (the marks of a resting box), \thesis{§5.4} (its footnote's support hull);
+/// DampingParams::supportTest says why DAMPENOBJECTS needs it.
+std::vector<SupportVerdict> centreOverSupport(const World& world,
+                                              const std::vector<ContactManifold>& contacts,
+                                              const SupportTestParams& params = {});
+
+}  // namespace boxsim
