@@ -17,10 +17,10 @@
 #include <string>
 #include <tuple>
 
+#include "boxsim/collision/xz_hull.hpp"
+
 namespace boxsim {
 namespace {
-
-using Vec2 = Eigen::Vector2d;  // a point of the xz plane: (x, z), m
 
 /// The bottom face of a box: what "the bottom plane of the box" (\thesis{§5.4}) means for a box
 /// of any orientation.
@@ -94,44 +94,17 @@ std::vector<VerticalContact> sortContactPointsAscending(
   return sorted;
 }
 
-/// z component of (b − a) × (c − a) in the xz plane: > 0 when a, b, c turn counter-clockwise.
-double cross(const Vec2& a, const Vec2& b, const Vec2& c) {
-  return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
-}
-
-/// Convex hull of xz points, counter-clockwise, collinear points dropped (Andrew's monotone
-/// chain: lexicographic sort, so the hull is a function of the point set alone).
-std::vector<Vec2> convexHull(std::vector<Vec2> points) {
-  std::sort(points.begin(), points.end(), [](const Vec2& l, const Vec2& r) {
-    return std::make_pair(l.x(), l.y()) < std::make_pair(r.x(), r.y());
-  });
-  if (points.size() < 3) return points;
-  std::vector<Vec2> hull(2 * points.size());
-  std::size_t n = 0;
-  for (const Vec2& p : points) {
-    while (n >= 2 && cross(hull[n - 2], hull[n - 1], p) <= 0.0) --n;
-    hull[n++] = p;
-  }
-  const std::size_t lowerSize = n + 1;
-  for (std::size_t i = points.size() - 1; i-- > 0;) {
-    while (n >= lowerSize && cross(hull[n - 2], hull[n - 1], points[i]) <= 0.0) --n;
-    hull[n++] = points[i];
-  }
-  hull.resize(n - 1);  // the last point repeats the first
-  return hull;
-}
-
 /// True when every corner of `face` lies in the convex hull of `support`, or within
 /// face.tolerance outside it. A hull of fewer than 3 points has no area and covers nothing.
 bool hullCoversFace(const std::vector<Vec2>& support, const BottomFace& face) {
-  const std::vector<Vec2> hull = convexHull(support);
+  const std::vector<Vec2> hull = convexHullXZ(support);
   if (hull.size() < 3) return false;
   for (const Vec2& q : face.corners) {
     for (std::size_t i = 0; i < hull.size(); ++i) {
       const Vec2& p0 = hull[i];
       const Vec2& p1 = hull[(i + 1) % hull.size()];
       // Signed distance of q to the left of the edge p0 -> p1 (inside is to the left).
-      if (cross(p0, p1, q) < -face.tolerance * (p1 - p0).norm()) return false;
+      if (cross2(p0, p1, q) < -face.tolerance * (p1 - p0).norm()) return false;
     }
   }
   return true;

@@ -20,38 +20,10 @@
 #include <cmath>
 #include <limits>
 
+#include "boxsim/collision/xz_hull.hpp"
+
 namespace boxsim {
 namespace {
-
-using Vec2 = Eigen::Vector2d;  // a point of the xz plane: (x, z), m
-
-/// z component of (a − o) × (b − o) in the xz plane: > 0 when o, a, b turn counter-clockwise.
-double cross(const Vec2& o, const Vec2& a, const Vec2& b) {
-  return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
-}
-
-/// Convex hull of xz points, counter-clockwise, collinear points dropped (Andrew's monotone
-/// chain: a lexicographic sort, so the hull is a function of the point set alone). Collinear
-/// points give their two ends, one point itself.
-std::vector<Vec2> convexHull(std::vector<Vec2> p) {
-  std::sort(p.begin(), p.end(), [](const Vec2& l, const Vec2& r) {
-    return l.x() < r.x() || (l.x() == r.x() && l.y() < r.y());
-  });
-  p.erase(std::unique(p.begin(), p.end()), p.end());
-  if (p.size() < 3) return p;
-  std::vector<Vec2> hull(2 * p.size());
-  std::size_t h = 0;
-  for (const Vec2& q : p) {
-    while (h >= 2 && cross(hull[h - 2], hull[h - 1], q) <= 0.0) --h;
-    hull[h++] = q;
-  }
-  for (std::size_t k = p.size() - 1, lower = h + 1; k-- > 0;) {
-    while (h >= lower && cross(hull[h - 2], hull[h - 1], p[k]) <= 0.0) --h;
-    hull[h++] = p[k];
-  }
-  hull.resize(h - 1);  // the last point repeats the first
-  return hull;
-}
 
 /// A face of a box whose outward normal lies within the aligned angle of +y or −y.
 struct LevelFace {
@@ -83,7 +55,7 @@ LevelFace levelFace(const RigidBody& body, bool up, double alignedAngleDeg) {
       const Vec3 c = face.centre + su * u + sv * v;
       corners.emplace_back(c.x(), c.z());
     }
-  face.outline = convexHull(std::move(corners));
+  face.outline = convexHullXZ(std::move(corners));
   return face;
 }
 
@@ -111,7 +83,7 @@ std::vector<Vec2> contactPatch(const LevelFace& bottom, const LevelFace& top, do
   for (std::size_t e = 0; e < top.outline.size() && !patch.empty(); ++e) {
     const Vec2& a = top.outline[e];
     const Vec2& b = top.outline[(e + 1) % top.outline.size()];
-    patch = clipHalfPlane(patch, [&](const Vec2& p) { return cross(a, b, p); });
+    patch = clipHalfPlane(patch, [&](const Vec2& p) { return cross2(a, b, p); });
   }
   if (!patch.empty())
     patch = clipHalfPlane(patch, [&](const Vec2& p) {
@@ -126,12 +98,12 @@ std::vector<Vec2> contactPatch(const LevelFace& bottom, const LevelFace& top, do
 
 /// True when c lies in the convex hull of `points`, or within `tolerance` (m) of it.
 bool overHull(const std::vector<Vec2>& points, const Vec2& c, double tolerance) {
-  const std::vector<Vec2> hull = convexHull(points);
+  const std::vector<Vec2> hull = convexHullXZ(points);
   if (hull.size() >= 3) {
     for (std::size_t k = 0; k < hull.size(); ++k) {
       const Vec2& a = hull[k];
       const Vec2& b = hull[(k + 1) % hull.size()];
-      if (cross(a, b, c) < -tolerance * (b - a).norm()) return false;
+      if (cross2(a, b, c) < -tolerance * (b - a).norm()) return false;
     }
     return true;
   }
