@@ -196,21 +196,31 @@ LoadStabilityReport addStableUnderLoad(const World& world,
       const int a = root(parent, p.top), b = root(parent, p.bottom);
       parent[std::max(a, b)] = std::min(a, b);
     }
-  for (int first = 0; first < n; ++first) {
-    if (!candidate[first] || root(parent, first) != first) continue;
-    std::vector<int> bodies;  // ascending
-    for (int i = first; i < n; ++i)
-      if (candidate[i] && root(parent, i) == first) bodies.push_back(i);
-    std::vector<VerticalPoint> own;
-    for (const VerticalPoint& p : points)
-      if ((candidate[p.top] && root(parent, p.top) == first) ||
-          (candidate[p.bottom] && root(parent, p.bottom) == first))
-        own.push_back(p);
+  // Each component's boxes (ascending: the first is its root) and points (in input order), in one
+  // pass over each: components are numbered by their first box.
+  std::vector<int> componentOf(n, -1);
+  std::vector<std::vector<int>> bodies;
+  std::vector<std::vector<VerticalPoint>> own;
+  for (int i = 0; i < n; ++i) {
+    if (!candidate[i]) continue;
+    int& c = componentOf[root(parent, i)];
+    if (c < 0) {
+      c = static_cast<int>(bodies.size());
+      bodies.emplace_back();
+      own.emplace_back();
+    }
+    bodies[c].push_back(i);
+  }
+  for (const VerticalPoint& p : points) {
+    const int side = candidate[p.top] ? p.top : candidate[p.bottom] ? p.bottom : -1;
+    if (side >= 0) own[componentOf[root(parent, side)]].push_back(p);
+  }
+  for (std::size_t c = 0; c < bodies.size(); ++c) {
     ++report.components;
-    if (!componentHolds(world, bodies, own, params.cornerTolerance, report)) continue;
+    if (!componentHolds(world, bodies[c], own[c], params.cornerTolerance, report)) continue;
     ++report.stableComponents;
-    for (int i : bodies) stable[i] = kStableUnderLoad;
-    report.bodiesAdded += static_cast<int>(bodies.size());
+    for (int i : bodies[c]) stable[i] = kStableUnderLoad;
+    report.bodiesAdded += static_cast<int>(bodies[c].size());
   }
   return report;
 }
