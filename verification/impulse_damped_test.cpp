@@ -550,7 +550,7 @@ TEST_CASE("Fig. 6.7 read with the origin on the ground: the clump piles up and s
           "little chatter left in its momenta",
           "[impulse_damped][chatter][clump]") {
   // clump100_ground.json: 100 cubes thrown at 5 m/s towards the ground's centre, e = 0.5,
-  // damped integration as the thesis has it (sleeping on). Settled from about 5 s (measured).
+  // damped integration as the thesis has it (sleeping on). Settled from about 6 s (measured).
   Scene scene =
       loadScene(std::string(BOXSIM_SOURCE_DIR) + "/chapters/impulse_damped/scenes/clump100_ground.json");
   World& world = scene.world;

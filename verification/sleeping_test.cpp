@@ -354,7 +354,7 @@ TEST_CASE("Chatter detection puts the clump's chattering cubes to sleep: the hea
           "every cube asleep, where sleeping alone leaves it awake for ever",
           "[impulse_damped][sleeping][chatter][clump]") {
   // clump100_ground.json (Fig. 6.7 read with the origin on the ground): with sleeping alone,
-  // 15 cubes keep small momenta for ever (impulse_damped_test), so the heap never sleeps.
+  // some cubes keep small momenta for ever (impulse_damped_test), so the heap never sleeps.
   Scene scene =
       loadScene(std::string(BOXSIM_SOURCE_DIR) + "/chapters/impulse_damped/scenes/clump100_ground.json");
   World& world = scene.world;

@@ -1,12 +1,16 @@
 /// \file
-/// Convex hulls in the horizontal (xz) plane: what a box rests on seen from above, for the
-/// geometric-stability test of \thesis{§5.4} and the support test of DAMPENOBJECTS.
+/// The horizontal (xz) plane seen from above: a box's upper or lower face and convex hulls of
+/// what a box rests on, for the geometric-stability tests of \thesis{§5.4} (and stability under
+/// load) and the support test of DAMPENOBJECTS.
 #pragma once
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <vector>
 
 #include "boxsim/core/math.hpp"
+#include "boxsim/core/rigid_body.hpp"
 
 namespace boxsim {
 
@@ -41,6 +45,48 @@ inline std::vector<Vec2> convexHullXZ(std::vector<Vec2> points) {
   }
   hull.resize(n - 1);  // the last point repeats the first
   return hull;
+}
+
+/// The face of a box whose outward normal points most nearly up or down, of any orientation:
+/// the face normal to the box's most vertical axis k.
+///           v
+///           ^
+///     1 +---|---+ 0       corner c = centre + su u + sv v (u, v the other two axes times their
+///       |   |   |           half extents): 0: (+,+)  1: (-,+)  2: (-,-)  3: (+,-)
+///       |   o---|---> u
+///       |       |
+///     2 +-------+ 3
+struct HorizontalFace {
+  int axis = 1;                   ///< k, the body axis the face is normal to
+  double verticality = 1.0;       ///< |n·y| of its outward normal n: 1 for a level face
+  Vec3 centre = Vec3::Zero();     ///< m
+  Vec3 normal = Vec3::UnitY();    ///< outward, unit
+  std::array<Vec2, 4> corners{};  ///< xz projections, m, numbered as in the diagram
+  double smallerHalfExtent = 0.0;  ///< m, the smaller of the face's two half extents
+};
+
+/// The upper (`up`) or lower face of `body` (up-to-date R), as HorizontalFace says.
+inline HorizontalFace horizontalFace(const RigidBody& body, bool up) {
+  HorizontalFace face;
+  const int k = body.mostVerticalAxis();
+  face.axis = k;
+  face.verticality = std::abs(body.R(1, k));
+  // The outward normal: along the axis if it points the face's way, against it otherwise.
+  const double sense = (body.R(1, k) > 0.0) == up ? 1.0 : -1.0;
+  face.normal = sense * body.R.col(k);
+  face.centre = body.s.x + sense * body.halfExtents[k] * body.R.col(k);
+  const int iu = (k + 1) % 3;
+  const int iv = (k + 2) % 3;
+  const Vec3 u = body.halfExtents[iu] * body.R.col(iu);
+  const Vec3 v = body.halfExtents[iv] * body.R.col(iv);
+  static constexpr std::array<double, 4> kSignU = {1.0, -1.0, -1.0, 1.0};
+  static constexpr std::array<double, 4> kSignV = {1.0, 1.0, -1.0, -1.0};
+  for (int c = 0; c < 4; ++c) {
+    const Vec3 p = face.centre + kSignU[c] * u + kSignV[c] * v;
+    face.corners[c] = Vec2(p.x(), p.z());
+  }
+  face.smallerHalfExtent = std::min(body.halfExtents[iu], body.halfExtents[iv]);
+  return face;
 }
 
 }  // namespace boxsim

@@ -32,24 +32,11 @@ struct BottomFace {
 
 /// The face of `body` whose outward normal points most nearly down.
 BottomFace bottomFaceOf(const RigidBody& body, const GeometricStabilityParams& params) {
+  const HorizontalFace bottom = horizontalFace(body, /*up=*/false);
   BottomFace face;
-  const int k = body.mostVerticalAxis();
-  face.level = 1.0 - std::abs(body.R(1, k)) <= params.normalTolerance;
-  // The outward normal of the chosen face points down: against the axis if the axis points up.
-  const double down = body.R(1, k) > 0.0 ? -1.0 : 1.0;
-  const Vec3 centre = body.s.x + down * body.halfExtents[k] * body.R.col(k);
-  const int iu = (k + 1) % 3;
-  const int iv = (k + 2) % 3;
-  const Vec3 u = body.halfExtents[iu] * body.R.col(iu);
-  const Vec3 v = body.halfExtents[iv] * body.R.col(iv);
-  static constexpr std::array<double, 4> kSignU = {1.0, -1.0, -1.0, 1.0};
-  static constexpr std::array<double, 4> kSignV = {1.0, 1.0, -1.0, -1.0};
-  for (int c = 0; c < 4; ++c) {
-    const Vec3 p = centre + kSignU[c] * u + kSignV[c] * v;
-    face.corners[c] = Vec2(p.x(), p.z());
-  }
-  face.tolerance =
-      params.cornerTolerance * std::min(body.halfExtents[iu], body.halfExtents[iv]);
+  face.level = 1.0 - bottom.verticality <= params.normalTolerance;
+  face.corners = bottom.corners;
+  face.tolerance = params.cornerTolerance * bottom.smallerHalfExtent;
   return face;
 }
 

@@ -23,6 +23,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "boxsim/collision/xz_hull.hpp"
 #include "boxsim/geometric_stability/geometric_stability.hpp"
 
 #ifdef BOXSIM_HAVE_GLPK
@@ -43,13 +44,7 @@ bool alongY(const Vec3& n, double tolerance) { return 1.0 - std::abs(n.y()) <= t
 
 /// A box with a face whose outward normal is along −y (the same "level" as §5.4's rule).
 bool isLevel(const RigidBody& body, double tolerance) {
-  return 1.0 - std::abs(body.R(1, body.mostVerticalAxis())) <= tolerance;
-}
-
-/// Smaller half extent of the face a level box rests on, m (the margin; unused without GLPK).
-[[maybe_unused]] double bottomHalfExtent(const RigidBody& body) {
-  const int k = body.mostVerticalAxis();
-  return std::min(body.halfExtents[(k + 1) % 3], body.halfExtents[(k + 2) % 3]);
+  return 1.0 - horizontalFace(body, /*up=*/false).verticality <= tolerance;
 }
 
 /// Union-find root with path halving; the smaller index becomes the root, so components are
@@ -114,7 +109,7 @@ bool componentHolds(const World& world, const std::vector<int>& bodies,
     for (std::size_t local = 0; local < bodies.size(); ++local) {
       const RigidBody& b = world.bodies[bodies[local]];
       const double share = b.mass * g / weight;
-      const Vec3 d = cornerTolerance * bottomHalfExtent(b) * direction;
+      const Vec3 d = cornerTolerance * horizontalFace(b, /*up=*/false).smallerHalfExtent * direction;
       const double length = b.halfExtents.maxCoeff();
       const double rhs[3] = {share, -d.z() / length * share, d.x() / length * share};
       for (int k = 0; k < 3; ++k)

@@ -41,21 +41,11 @@ struct LevelFace {
 /// unless one of the body's axes lies within `alignedAngleDeg` of y.
 LevelFace levelFace(const RigidBody& body, bool up, double alignedAngleDeg) {
   LevelFace face;
-  const int k = body.mostVerticalAxis();
-  if (std::abs(body.R(1, k)) < std::cos(alignedAngleDeg * kPi / 180.0)) return face;
-  // The axis k, turned to point the face's way.
-  const double sense = (body.R(1, k) > 0.0) == up ? 1.0 : -1.0;
-  face.normal = sense * body.R.col(k);
-  face.centre = body.s.x + body.halfExtents[k] * face.normal;
-  const Vec3 u = body.halfExtents[(k + 1) % 3] * body.R.col((k + 1) % 3);
-  const Vec3 v = body.halfExtents[(k + 2) % 3] * body.R.col((k + 2) % 3);
-  std::vector<Vec2> corners;
-  for (const double su : {1.0, -1.0})
-    for (const double sv : {1.0, -1.0}) {
-      const Vec3 c = face.centre + su * u + sv * v;
-      corners.emplace_back(c.x(), c.z());
-    }
-  face.outline = convexHullXZ(std::move(corners));
+  const HorizontalFace h = horizontalFace(body, up);
+  if (h.verticality < std::cos(alignedAngleDeg * kPi / 180.0)) return face;
+  face.normal = h.normal;
+  face.centre = h.centre;
+  face.outline = convexHullXZ(std::vector<Vec2>(h.corners.begin(), h.corners.end()));
   return face;
 }
 
@@ -121,6 +111,12 @@ std::vector<SupportVerdict> centreOverSupport(const World& world,
                                               const std::vector<ContactManifold>& contacts,
                                               const SupportTestParams& params) {
   const std::size_t n = world.bodies.size();
+  // Every body's level faces, once: a body meets several others.
+  std::vector<LevelFace> downFace(n), upFace(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    downFace[i] = levelFace(world.bodies[i], false, params.alignedAngleDeg);
+    upFace[i] = levelFace(world.bodies[i], true, params.alignedAngleDeg);
+  }
   std::vector<std::vector<Vec2>> support(n);
   // Per body: the lowest and highest point of its supporting top faces over their patches, m,
   // and whether every support so far was such a face.
@@ -135,8 +131,8 @@ std::vector<SupportVerdict> centreOverSupport(const World& world,
       std::vector<Vec2>& points = support[upper];
       // A face down on a face up: where the two faces touch, whatever axis the narrow phase took
       // for the pair (a side face's, when a corner of one lies near the rim of the other).
-      const LevelFace bottom = levelFace(world.bodies[upper], false, params.alignedAngleDeg);
-      const LevelFace top = levelFace(world.bodies[lower], true, params.alignedAngleDeg);
+      const LevelFace& bottom = downFace[upper];
+      const LevelFace& top = upFace[lower];
       if (!bottom.outline.empty() && !top.outline.empty()) {
         const std::vector<Vec2> patch = contactPatch(bottom, top, params.contactBand);
         if (!patch.empty()) {

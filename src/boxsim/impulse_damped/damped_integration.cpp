@@ -190,9 +190,10 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   }
   clock.lap(&DampedStepProfile::velocitiesAndDamping);
   // DAMPEDINTEGRATION L5: FIXCONTACTCONSTRAINTS, and the contacts after it.
-  const std::vector<ContactManifold> contacts = fixContacts(world, dt, margin);
+  // Kept as the next step's starting contacts, where the support test reads them.
+  lastContacts_ = fixContacts(world, dt, margin);
+  const std::vector<ContactManifold>& contacts = lastContacts_;
   if (params_.damping.supportTest) {
-    lastContacts_ = contacts;
     lastPoses_.resize(n);
     for (std::size_t i = 0; i < n; ++i) lastPoses_[i] = {world.bodies[i].s.x, world.bodies[i].s.q};
   }

@@ -153,9 +153,10 @@ class DampedIntegrationStepper final : public Stepper {
   ContactGathering gathering_;
   VisualPlausibility plausibility_;
   std::vector<char> stable_;
-  // The contacts at the end of the last step, whose poses the next step starts from: the support
-  // test of DAMPENOBJECTS reads them (DampingParams::supportTest); and those poses (x, q per
-  // body), so that a world moved or changed between steps has its contacts found again.
+  // The contacts at the end of the last step (FIXCONTACTCONSTRAINTS'), whose poses the next step
+  // starts from: the support test of DAMPENOBJECTS reads them (DampingParams::supportTest); and
+  // those poses (x, q per body), so that a world moved or changed between steps has its
+  // contacts found again.
   std::vector<ContactManifold> lastContacts_;
   std::vector<std::pair<Vec3, Quat>> lastPoses_;
   Sleeping sleeping_;
