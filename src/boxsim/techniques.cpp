@@ -33,6 +33,15 @@ void refuseOptions(const std::string& method, const TechniqueOptions& options,
       throw std::invalid_argument("the method '" + method + "' takes no " + option + " option");
 }
 
+/// The geometric stability mode of `options`, if given, as the analytic method's and damped
+/// integration's switch and classifier parameters.
+void applyGeometricStability(const TechniqueOptions& options, bool& use,
+                             GeometricStabilityParams& params) {
+  if (!options.geometricStability) return;
+  use = *options.geometricStability != GeometricStabilityMode::Off;
+  params.underLoad = *options.geometricStability == GeometricStabilityMode::UnderLoad;
+}
+
 }  // namespace
 
 std::vector<std::string> methodNames() {
@@ -51,11 +60,7 @@ std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueO
     refuseOptions(method, options, /*takesImpulseOptions=*/false, /*takesGeometricStability=*/true);
     AnalyticParams params;
     if (options.integrator) params.loop.integrator = *options.integrator;
-    if (options.geometricStability) {
-      params.useGeometricStability = *options.geometricStability != GeometricStabilityMode::Off;
-      params.geometricStability.underLoad =
-          *options.geometricStability == GeometricStabilityMode::UnderLoad;
-    }
+    applyGeometricStability(options, params.useGeometricStability, params.geometricStability);
     return std::make_unique<AnalyticStepper>(params);
   }
   for (const auto& [variant, name] : kTimewarpMethodNames) {
@@ -78,11 +83,7 @@ std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueO
     DampedIntegrationParams params;
     if (options.contactNormal) params.impulse.normalModel = *options.contactNormal;
     if (options.contactGathering) params.impulse.gathering = *options.contactGathering;
-    if (options.geometricStability) {
-      params.useGeometricStability = *options.geometricStability != GeometricStabilityMode::Off;
-      params.geometricStability.underLoad =
-          *options.geometricStability == GeometricStabilityMode::UnderLoad;
-    }
+    applyGeometricStability(options, params.useGeometricStability, params.geometricStability);
     if (options.sleep) params.sleep.enabled = *options.sleep;
     if (options.chatterDetection) params.sleep.chatterDetection = *options.chatterDetection;
     if (options.continuousCollision) params.continuousCollision.enabled = *options.continuousCollision;
