@@ -13,10 +13,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 #include "boxsim/collision/broad_phase.hpp"
 #include "boxsim/collision/contact_manifold.hpp"
+#include "boxsim/collision/kept_narrow_phase.hpp"
 #include "boxsim/collision/separating_axis.hpp"
 
 using namespace boxsim;
@@ -662,4 +664,84 @@ TEST_CASE("The contact area of a cube turned 45 degrees on another is an octagon
       found = found || (p.position == m.points[k].position && p.featureId == m.points[k].featureId);
     CHECK(found);
   }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Kept narrow phases
+// ---------------------------------------------------------------------------------------------
+
+namespace {
+/// Whether two separating-axis results are the same to the last bit in every field.
+bool sameResult(const SeparatingAxisResult& x, const SeparatingAxisResult& y) {
+  return x.intersecting == y.intersecting && std::memcmp(&x.depth, &y.depth, sizeof x.depth) == 0 &&
+         std::memcmp(x.normal.data(), y.normal.data(), 3 * sizeof(double)) == 0 &&
+         x.kind == y.kind && x.indexA == y.indexA && x.indexB == y.indexB;
+}
+}  // namespace
+
+TEST_CASE("A kept narrow phase is the separating-axis test bit for bit, and runs again once a "
+          "box has moved by one rounding",
+          "[collision][kept]") {
+  // The standard configurations, boxes resting flush (on a ground slab, on an equal cube, side
+  // by side: the ties of the face rule), apart, and 400 random pairs overlapping or not.
+  std::vector<Config> configs = configurations();
+  const Obb ground{Vec3(0, -0.5, 0), Mat3::Identity(), Vec3(20, 0.5, 20)};
+  configs.push_back({"cube on the ground", ground, cube(Vec3(0.3, 0.5, -2.0))});
+  configs.push_back({"cube on a cube", cube(Vec3::Zero()), cube(Vec3(0.2, 1.0, 0.1))});
+  configs.push_back({"side by side", cube(Vec3::Zero()), cube(Vec3(1.0, 0.0, 0.0))});
+  configs.push_back({"turned on a cube", cube(Vec3::Zero()),
+                     cube(Vec3(0, 0.99, 0), rotation(kPi / 4, Vec3::UnitY()))});
+  configs.push_back({"apart", cube(Vec3::Zero()), cube(Vec3(0.3, 1.2, 0.0), rotation(0.4, Vec3(1, 1, 0)))});
+  testing::SeededRandom random(11);
+  for (int trial = 0; trial < 400; ++trial)
+    configs.push_back({"random",
+                       Obb{random.vector(-0.8, 0.8), random.rotation().toRotationMatrix(), random.vector(0.2, 1.0)},
+                       Obb{random.vector(-0.8, 0.8), random.rotation().toRotationMatrix(), random.vector(0.2, 1.0)}});
+  KeptNarrowPhase kept;
+  int i = 0;
+  for (const Config& c : configs) {
+    INFO(c.name << " #" << i / 2);
+    const int ia = i++, ib = i++;
+    const SeparatingAxisResult ab = separatingAxisTest(c.a, c.b);
+    const SeparatingAxisResult ba = separatingAxisTest(c.b, c.a);
+    const long tests = kept.tests(), reuses = kept.reuses();
+    CHECK(sameResult(kept.axis(ia, c.a, ib, c.b), ab));
+    CHECK(kept.tests() == tests + 1);
+    // Asked again: handed back. The other way round is a pair of its own, tested once.
+    CHECK(sameResult(kept.axis(ia, c.a, ib, c.b), ab));
+    CHECK(sameResult(kept.axis(ib, c.b, ia, c.a), ba));
+    CHECK(sameResult(kept.axis(ib, c.b, ia, c.a), ba));
+    CHECK(kept.reuses() == reuses + 2);
+    CHECK(kept.tests() == tests + 2);
+    // The manifold built from a kept test is collideBoxes'.
+    const ContactManifold m = kept.collide(ia, c.a, ib, c.b, 0.01);
+    const ContactManifold direct = collideBoxes(c.a, c.b, 0.01);
+    REQUIRE(m.count == direct.count);
+    CHECK(std::memcmp(&m.depth, &direct.depth, sizeof m.depth) == 0);
+    for (int k = 0; k < m.count; ++k) CHECK(m.points[k].position == direct.points[k].position);
+    // One rounding of one coordinate of either box: the test runs again.
+    Obb nudged = c.b;
+    nudged.center.x() = std::nextafter(nudged.center.x(), 1e9);
+    CHECK(sameResult(kept.axis(ia, c.a, ib, nudged), separatingAxisTest(c.a, nudged)));
+    CHECK(kept.tests() == tests + 3);
+  }
+  // A step in which a pair is not asked for forgets it: asked after, its test runs again.
+  kept.endStep();  // the step of every pair above
+  CHECK(sameResult(kept.axis(0, configs[0].a, 1, configs[0].b),
+                   separatingAxisTest(configs[0].a, configs[0].b)));
+  const long before = kept.tests();
+  kept.endStep();  // pair (0, 1) asked for: kept
+  kept.axis(0, configs[0].a, 1, configs[0].b);
+  CHECK(kept.tests() == before);
+  kept.endStep();  // asked for again in the step that ends: kept
+  kept.endStep();  // not asked for: forgotten
+  kept.axis(0, configs[0].a, 1, configs[0].b);
+  CHECK(kept.tests() == before + 1);
+  // Keeping off: every test runs.
+  KeptNarrowPhase runAll(false);
+  runAll.axis(0, configs[0].a, 1, configs[0].b);
+  CHECK(sameResult(runAll.axis(0, configs[0].a, 1, configs[0].b),
+                   separatingAxisTest(configs[0].a, configs[0].b)));
+  CHECK(runAll.tests() == 2);
+  CHECK(runAll.reuses() == 0);
 }

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -62,6 +63,17 @@ struct PeerPose {
   Vec3 omega = Vec3::Zero();  ///< rad/s
 };
 
+/// What an engine's steps did, counted (not timed).
+struct StepWork {
+  /// Separating-axis tests run per pair in contact at a step's end, per step.
+  double narrowPhasesPerTouchingPair = 0.0;
+  /// Of those, the tests in the passes (pairs with a fast body at the passes' predicted poses).
+  double passNarrowPhasesPerTouchingPair = 0.0;
+  /// Tests handed back for unchanged poses (KeptNarrowPhase) per such pair per step.
+  double keptPerTouchingPair = 0.0;
+  double passesPerStep = 0.0;  ///< collision and contact passes per step
+};
+
 /// An engine under comparison.
 class PeerEngine {
  public:
@@ -81,6 +93,9 @@ class PeerEngine {
   /// Seconds of the steps since load() by stage of the engine's step, largest first, for the
   /// engines that report them (boxsim damped: DampedStepProfile); empty for the others.
   virtual std::vector<std::pair<std::string, double>> stages() const { return {}; }
+  /// The work of the steps since load() that had a body awake, for the engines that count it
+  /// (boxsim damped: DampedStepProfile); nullopt for the others.
+  virtual std::optional<StepWork> work() const { return std::nullopt; }
 };
 
 /// boxsim under one of its methods (techniques.hpp), e.g. "damped", or a method with a contact

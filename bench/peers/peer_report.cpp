@@ -113,7 +113,13 @@ std::string tableRow(const SceneResults& scene, const RunResult& r) {
       << fixed(1000 * m.meanPenetration, 1) << " / " << fixed(1000 * m.finalPenetration, 1) << " / "
       << fixed(1000 * m.maxPenetration, 1) << " | " << fixed(m.finalKinetic, 3) << " | "
       << m.asleepAtEnd << " | " << seconds(m.allAsleepFrom) << " | " << seconds(m.allAtRestFrom)
-      << " | " << (m.drift < 0 ? "–" : fixed(1000 * m.drift, 1)) << " |\n";
+      << " | " << (m.drift < 0 ? "–" : fixed(1000 * m.drift, 1)) << " | "
+      << (r.work ? fixed(r.work->narrowPhasesPerTouchingPair, 2) + " (" +
+                       fixed(r.work->passNarrowPhasesPerTouchingPair, 2) + "; " +
+                       fixed(r.work->keptPerTouchingPair, 2) + ") · " +
+                       fixed(r.work->passesPerStep, 1)
+                 : "–")
+      << " |\n";
   return out.str();
 }
 
@@ -340,13 +346,17 @@ std::string markdownPage(const std::vector<SceneResults>& scenes, const RunSetup
       << "when every box stays asleep (engine's own sleeping) and from when every box stays at "
       << "rest (below " << kRestSpeed << " m/s and " << kRestSpin << " rad/s, whatever the engine "
       << "does); drift is the tower's top box's distance from its start, or the die's horizontal "
-      << "travel.\n\n"
+      << "travel. *Work* (boxsim's rows, counted over the first repetition's steps that had a "
+      << "body awake): separating-axis tests run per pair in contact at a step's end, per step "
+      << "(in brackets: of those, the tests in the passes, of pairs with a fast body at their "
+      << "predicted poses; then the tests handed back for poses that had not changed since they "
+      << "were run, KeptNarrowPhase), and collision and contact passes per step.\n\n"
       << "## Summary\n\n" << summary(scenes) << aims(scenes) << stages(scenes) << realTime(scenes) << memory(scenes)
       << "## Table\n\n"
       << "| scene | boxes | engine | mean ms/step | median | p95 | rep means | mean ÷ boxsim damped's "
       << "| penetration mean / final / max (mm) | kinetic energy at end (J) | asleep at end "
-      << "| all asleep from (s) | all at rest from (s) | drift (mm) |\n"
-      << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+      << "| all asleep from (s) | all at rest from (s) | drift (mm) | work |\n"
+      << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const SceneResults& s : scenes)
     for (const RunResult& r : s.runs) out << tableRow(s, r);
   out << "\n## Engines\n\n";

@@ -141,6 +141,7 @@ void runRepetition(const SceneSpec& spec, PeerEngine& engine, double dt, RunResu
   }
   result.measures = m;
   result.stages = engine.stages();
+  result.work = engine.work();
   result.stagedStepsMs = stepTotal;
 }
 

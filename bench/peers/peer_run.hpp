@@ -57,6 +57,7 @@ struct RunResult {
   /// for engines that do not report stages.
   std::vector<std::pair<std::string, double>> stages;
   double stagedStepsMs = 0.0;  ///< ms, the first repetition's step times summed
+  std::optional<StepWork> work;  ///< the first repetition's work (PeerEngine::work)
 
   double meanMs() const;    ///< over every step of every repetition
   double medianMs() const;  ///< over every step of every repetition

@@ -131,6 +131,14 @@ class BoxsimEngine : public PeerEngine {
                      [](const auto& x, const auto& y) { return x.second > y.second; });
     return stages;
   }
+  std::optional<StepWork> work() const override {
+    if (profile_.workSteps == 0) return std::nullopt;
+    const double pairs = static_cast<double>(std::max(1L, profile_.touchingPairs));
+    return StepWork{static_cast<double>(profile_.narrowPhases) / pairs,
+                    static_cast<double>(profile_.passNarrowPhases) / pairs,
+                    static_cast<double>(profile_.keptNarrowPhases) / pairs,
+                    static_cast<double>(profile_.passes) / static_cast<double>(profile_.workSteps)};
+  }
 
  private:
   std::string method_;

@@ -65,19 +65,29 @@ std::vector<std::pair<int, int>> candidatePairs(const World& world, const std::v
   return allPairs(world, lo, hi, margin);
 }
 
+namespace {
+/// collideBoxes for bodies i and j where they stand, through `kept` when there is one.
+ContactManifold narrowPhase(const World& world, int i, int j, double margin,
+                            KeptNarrowPhase* kept) {
+  const Obb a = Obb::of(world.bodies[i]), b = Obb::of(world.bodies[j]);
+  return kept ? kept->collide(i, a, j, b, margin) : collideBoxes(a, b, margin);
+}
+}  // namespace
+
 std::vector<ContactManifold> findContacts(const World& world, double margin) {
   return findContacts(world, margin, candidatePairs(world, margin));
 }
 
 std::vector<ContactManifold> findContacts(const World& world, double margin,
-                                          const std::vector<std::pair<int, int>>& pairs) {
+                                          const std::vector<std::pair<int, int>>& pairs,
+                                          KeptNarrowPhase* kept) {
   // Room for every candidate at once: in the scenes that make this costly, stacks at rest,
   // nearly every candidate touches, and growing the vector step by step would copy each
   // manifold several times.
   std::vector<ContactManifold> contacts;
   contacts.reserve(pairs.size());
   for (const auto& [i, j] : pairs) {
-    ContactManifold m = collideBoxes(Obb::of(world.bodies[i]), Obb::of(world.bodies[j]), margin);
+    ContactManifold m = narrowPhase(world, i, j, margin, kept);
     if (m.count == 0) continue;
     m.a = i;
     m.b = j;
@@ -129,7 +139,8 @@ std::vector<std::pair<int, int>> movedPairs(const World& world, double margin,
 
 std::vector<ContactManifold> refindContacts(const World& world, double margin,
                                             const std::vector<ContactManifold>& before,
-                                            const std::vector<char>& moved) {
+                                            const std::vector<char>& moved,
+                                            KeptNarrowPhase* kept) {
   if (moved.size() != world.bodies.size())
     throw std::invalid_argument("refindContacts: give one moved flag per body");
   std::vector<ContactManifold> contacts;
@@ -151,7 +162,7 @@ std::vector<ContactManifold> refindContacts(const World& world, double margin,
   for (const auto& [i, j] : pairs) {
     if (!moved[i] && !moved[j]) continue;
     keepBefore({i, j});
-    ContactManifold m = collideBoxes(Obb::of(world.bodies[i]), Obb::of(world.bodies[j]), margin);
+    ContactManifold m = narrowPhase(world, i, j, margin, kept);
     if (m.count == 0) continue;
     m.a = i;
     m.b = j;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "boxsim/collision/contact.hpp"
+#include "boxsim/collision/kept_narrow_phase.hpp"
 #include "boxsim/core/enum_names.hpp"
 #include "boxsim/core/world.hpp"
 
@@ -70,9 +71,12 @@ std::vector<ContactManifold> findContacts(const World& world, double margin = 0.
 
 /// findContacts with the broad phase's answer given: `pairs` must be candidatePairs(world,
 /// margin) (found some cheaper way, as ContactGathering::stepPairs does); collideBoxes runs on
-/// each. The same list as findContacts(world, margin). 	hesis{§3.2}
+/// each. The same list as findContacts(world, margin). `kept`, when given, runs each narrow
+/// phase (KeptNarrowPhase::collide), sparing the tests of pairs that stand as when last
+/// tested; the same list. \thesis{§3.2}
 std::vector<ContactManifold> findContacts(const World& world, double margin,
-                                          const std::vector<std::pair<int, int>>& pairs);
+                                          const std::vector<std::pair<int, int>>& pairs,
+                                          KeptNarrowPhase* kept = nullptr);
 
 /// findContacts(world, margin) after only some bodies moved: `before` is what findContacts
 /// returned with the same margin when every body stood where it stands now except those with
@@ -83,10 +87,12 @@ std::vector<ContactManifold> findContacts(const World& world, double margin,
 /// element, for the cost of at most a broad phase and the narrow phases of the moved bodies'
 /// pairs.
 /// \param moved  one entry per body
+/// \param kept   when given, runs the narrow phases (KeptNarrowPhase::collide); the same list
 /// \throws std::invalid_argument unless moved has one entry per body
 std::vector<ContactManifold> refindContacts(const World& world, double margin,
                                             const std::vector<ContactManifold>& before,
-                                            const std::vector<char>& moved);
+                                            const std::vector<char>& moved,
+                                            KeptNarrowPhase* kept = nullptr);
 
 /// The deepest overlap of any pair of bodies (separating-axis depth), m; 0 when none overlaps.
 /// Pairs come from candidatePairs(world), so from world.broadPhase; the result does not depend

@@ -93,6 +93,12 @@ class ContactGathering {
 
   /// The normal model and its memory, for contacts gathered outside the passes.
   ContactNormalTracker& normals() { return normals_; }
+  /// The narrow phases of the step kept for the poses they ran at (KeptNarrowPhase), for the
+  /// narrow phases a step runs outside the passes (FIXCONTACTCONSTRAINTS); kept until the step
+  /// after the one that last asked for them.
+  KeptNarrowPhase& kept() { return once_.kept(); }
+  /// As kept(), read only: its counters, for tests and benches.
+  const KeptNarrowPhase& kept() const { return once_.kept(); }
   /// Narrow phases run since construction (OncePerStep: cache builds), for tests and benches.
   long narrowPhases() const { return once_.narrowPhases(); }
   /// OncePerStep: narrow phases of pairs with a fast body at the poses of a pass, since

@@ -156,6 +156,11 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   }
   // Friction's budget is the normal impulse of this step (applyPatchFriction).
   frictionTotals_.clear();
+  // The narrow phases so far, for the profile's count of this step's.
+  const long passTestsBefore = gathering_.passNarrowPhases();
+  const long testsBefore = gathering_.kept().tests() + passTestsBefore;
+  const long reusesBefore = gathering_.kept().reuses();
+
   // Bodies that take part in a contact (or, with dampCollidingBodies, a collision) this step.
   std::vector<char> touched(n, 0);
   // The contacts of the step's start, found before the first pass would find them.
@@ -178,7 +183,9 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
     std::vector<SupportVerdict> support;
     if (params_.damping.supportTest) {
       const double restingMargin = restingContactMargin(world, margin, dt);
-      if (!posesUnchanged(world, lastPoses_)) lastContacts_ = findContacts(world, restingMargin);
+      if (!posesUnchanged(world, lastPoses_))
+        lastContacts_ = findContacts(world, restingMargin, candidatePairs(world, restingMargin),
+                                     &gathering_.kept());
       support = centreOverSupport(world, lastContacts_,
                                   {params_.sleep.supportNormalY, params_.damping.alignedAngleDeg,
                                    restingMargin, margin});
@@ -206,6 +213,15 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   clock.lap(&DampedStepProfile::stability);
   endStep(world, dt, contacts, stats);
   clock.lap(&DampedStepProfile::sleeping);
+  if (profile_) {
+    ++profile_->workSteps;
+    profile_->narrowPhases +=
+        gathering_.kept().tests() + gathering_.passNarrowPhases() - testsBefore;
+    profile_->passNarrowPhases += gathering_.passNarrowPhases() - passTestsBefore;
+    profile_->keptNarrowPhases += gathering_.kept().reuses() - reusesBefore;
+    profile_->touchingPairs += stats.contacts;
+    profile_->passes += stats.passes;
+  }
   return stats;
 }
 
@@ -265,9 +281,13 @@ std::vector<ContactManifold> DampedIntegrationStepper::fixContacts(World& world,
   // The broad phase of these contacts, from the step's candidates when they cover it.
   std::vector<std::pair<int, int>> pairs;
   const bool havePairs = gathering_.stepPairs(world, restingMargin, pairs);
+  // Every narrow phase of the step's end goes through the kept ones: the pairs that stand as
+  // they stood when last tested (and the next step's start tests these same poses) are not
+  // tested again.
+  KeptNarrowPhase& kept = gathering_.kept();
   if (!params_.fixContactConstraints)
-    return havePairs ? findContacts(world, restingMargin, pairs)
-                     : findContacts(world, restingMargin);
+    return findContacts(world, restingMargin,
+                        havePairs ? pairs : candidatePairs(world, restingMargin), &kept);
   // Nudging moves x alone: the bodies it moved are those whose x changed.
   const std::size_t n = world.bodies.size();
   std::vector<Vec3> before(n);
@@ -275,11 +295,11 @@ std::vector<ContactManifold> DampedIntegrationStepper::fixContacts(World& world,
   // SETGEOMETRICALLYSTABLE, for the next step's COLLIDE L11-L14, needs the contacts after
   // DAMPEDINTEGRATION L5: those it found, with the pairs of the bodies it nudged found again.
   if (fixContactConstraints(world, restingMargin, params_.fixContacts, dt, &contacts,
-                            havePairs ? &pairs : nullptr) > 0) {
+                            havePairs ? &pairs : nullptr, &kept) > 0) {
     std::vector<char> nudged(n, 0);
     for (std::size_t i = 0; i < n; ++i)
       nudged[i] = static_cast<char>(world.bodies[i].s.x != before[i]);
-    contacts = refindContacts(world, restingMargin, contacts, nudged);
+    contacts = refindContacts(world, restingMargin, contacts, nudged, &kept);
   }
   return contacts;
 }

@@ -78,6 +78,13 @@ struct DampedStepProfile {
   /// to sleep or kept awake after \alg{DAMPEDINTEGRATION L6} (with the normal model's end of step)
   double sleeping = 0.0;
   long steps = 0;  ///< steps profiled (pieces of a step split by continuous collision each count)
+  /// The work of the profiled steps that had a body awake (the others do nothing):
+  long workSteps = 0;       ///< such steps
+  long narrowPhases = 0;    ///< separating-axis tests run in them (KeptNarrowPhase's and the passes')
+  long passNarrowPhases = 0;  ///< of those, the passes' tests of pairs with a fast body
+  long keptNarrowPhases = 0;  ///< narrow phases handed back by KeptNarrowPhase instead of run
+  long touchingPairs = 0;   ///< pairs in contact at their ends, summed (StepStats::contacts)
+  long passes = 0;          ///< collision and contact passes run in them
   /// s, the sum of the stages.
   double total() const {
     return stepContacts + collisionPasses + contactPasses + velocitiesAndDamping + fixContacts + stability + sleeping;

@@ -21,10 +21,11 @@ double fixLiftLimit(const RigidBody& body, const FixContactParams& params, const
 
 int fixContactConstraints(World& world, double margin, const FixContactParams& params, double dt,
                           std::vector<ContactManifold>* gathered,
-                          const std::vector<std::pair<int, int>>* pairs) {
+                          const std::vector<std::pair<int, int>>* pairs,
+                          KeptNarrowPhase* kept) {
   // FIXCONTACTCONSTRAINTS L1: sortContactPointsAscending.
   std::vector<ContactManifold> contacts =
-      pairs ? findContacts(world, margin, *pairs) : findContacts(world, margin);
+      findContacts(world, margin, pairs ? *pairs : candidatePairs(world, margin), kept);
   if (gathered) *gathered = contacts;
   const auto key = [](const ContactManifold& m) { return std::make_tuple(m.centroid().y(), m.a, m.b); };
   std::stable_sort(contacts.begin(), contacts.end(),
@@ -54,7 +55,8 @@ int fixContactConstraints(World& world, double margin, const FixContactParams& p
     while (n < limit) {
       const Obb box = Obb::of(moving);
       const Obb stable = Obb::of(other);
-      const SeparatingAxisResult sat = separatingAxisTest(box, stable);
+      const SeparatingAxisResult sat =
+          kept ? kept->axis(upper, box, lower, stable) : separatingAxisTest(box, stable);
       if (sat.depth <= slop) break;
       // One nudge, then more while the test before each is certain to find the pair still
       // deeper than the slop (depthAfterTranslationAtLeast, 1.01 for |offset| = 1 up to

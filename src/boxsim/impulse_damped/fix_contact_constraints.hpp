@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "boxsim/collision/contact.hpp"
+#include "boxsim/collision/kept_narrow_phase.hpp"
 #include "boxsim/core/world.hpp"
 #include "boxsim/impulse_damped/impulse_params.hpp"
 
@@ -37,8 +38,11 @@ double fixLiftLimit(const RigidBody& body, const FixContactParams& params, const
 /// \return the number of nudges made.
 /// `pairs`, when given, is candidatePairs(world, margin) found by the caller (the contact
 /// gathering's step candidates, ContactGathering::stepPairs), which spares the broad phase.
+/// `kept`, when given, runs every narrow phase (KeptNarrowPhase), which spares the tests of
+/// pairs standing as when last tested; the same nudges.
 int fixContactConstraints(World& world, double margin, const FixContactParams& params, double dt,
                           std::vector<ContactManifold>* gathered = nullptr,
-                          const std::vector<std::pair<int, int>>* pairs = nullptr);
+                          const std::vector<std::pair<int, int>>* pairs = nullptr,
+                          KeptNarrowPhase* kept = nullptr);
 
 }  // namespace boxsim

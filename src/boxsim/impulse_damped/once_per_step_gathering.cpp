@@ -12,7 +12,10 @@
 namespace boxsim {
 
 OncePerStepGathering::OncePerStepGathering(const ImpulseParams& params)
-    : params_(params), candidates_(params.slowWidening), slowPairs_(params.pairReach) {}
+    : params_(params),
+      candidates_(params.slowWidening),
+      slowPairs_(params.pairReach),
+      kept_(params.keepNarrowPhases) {}
 
 bool OncePerStepGathering::cacheCovers(const World& world, double margin) const {
   return margin == cacheMargin_ && cached_ && bodies_.sameMobility(world);
@@ -39,7 +42,7 @@ void OncePerStepGathering::buildCache(const World& world, const Vec3& gravitySte
   // the sweep's own test.
   for (StepCandidates::Candidate& candidate : candidates_.candidates())
     candidate.cached = slowPairs_.add(world, bodies_, candidate.a, candidate.b, margin,
-                                      params_.slowWidening, normals);
+                                      params_.slowWidening, normals, kept_);
   ++narrowPhases_;
   // Every predicted pose and every candidate's answer is from before this build.
   buildStamp_ = stamps_.next();
@@ -308,7 +311,7 @@ void OncePerStepGathering::mergeSlowPairs(const World& world, const Vec3& gravit
       slowPairs_.forgetFace(k);
       continue;
     }
-    if (slowPairs_.passContact(world, bodies_, k, gravityStep, dt, margin, normals, c))
+    if (slowPairs_.passContact(world, bodies_, k, gravityStep, dt, margin, normals, kept_, c))
       contacts.push_back(c);
   }
   contacts.insert(contacts.end(), fastContacts_.begin() + static_cast<std::ptrdiff_t>(f),

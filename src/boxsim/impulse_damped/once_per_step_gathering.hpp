@@ -100,11 +100,18 @@ class OncePerStepGathering {
               ContactNormalTracker& normals, std::vector<ImpulseContact>& contacts);
   /// Ends a pass.
   void endPass() { poses_.endPass(); }
-  /// Ends the step: the cache is dropped (the step moves the bodies).
+  /// Ends the step: the cache is dropped (the step moves the bodies); the kept narrow phases
+  /// of the pairs the step asked about stay (KeptNarrowPhase::endStep).
   void endStep() {
     cached_ = false;
     bodies_.endStep();
+    kept_.endStep();
   }
+  /// The narrow phases of the step, kept for the poses they were run at: the cache's builds
+  /// run through it, and so may the caller's own (FIXCONTACTCONSTRAINTS).
+  KeptNarrowPhase& kept() { return kept_; }
+  /// As kept(), read only.
+  const KeptNarrowPhase& kept() const { return kept_; }
   /// ContactGathering::stepPairs.
   bool stepPairs(const World& world, double margin, std::vector<std::pair<int, int>>& pairs) const;
   /// The islands of the step's candidate pairs, kept up to date pass by pass.
@@ -183,6 +190,7 @@ class OncePerStepGathering {
   std::vector<ContactManifold> manifolds_;  ///< the candidates' last manifolds (Candidate::manifold)
   std::vector<ImpulseContact> fastContacts_;  ///< this pass: the pairs with a fast body, by pair
   ContactIslands islands_;            ///< the islands of the candidates (islands())
+  KeptNarrowPhase kept_;              ///< the narrow phases of the step (kept())
   std::uint64_t islandSweep_ = 0;     ///< the sweep islands_ was built after
   std::size_t joinedCandidates_ = 0;  ///< candidates joined into islands_ so far
   std::vector<char> skip_;            ///< per body, this pass: its island is settled

@@ -18,7 +18,8 @@ void SlowPairCache::clear() {
 }
 
 int SlowPairCache::add(const World& world, const StepBodies& bodies, int i, int j, double margin,
-                       double slowWidening, ContactNormalTracker& normals) {
+                       double slowWidening, ContactNormalTracker& normals,
+                       KeptNarrowPhase& kept) {
   // Gathered as written, pass by pass, unless the two move together.
   const bool together = pairReach_ && bodies.movingTogether(i, j);
   if ((bodies.fast[i] || bodies.fast[j]) && !together) return -1;
@@ -31,7 +32,7 @@ int SlowPairCache::add(const World& world, const StepBodies& bodies, int i, int 
   obbBounds(Obb::of(bodyJ), wideningJ, loJ, hiJ);
   if (!boundsWithin(loI, hiI, loJ, hiJ, margin)) return -1;
   const double pairMargin = margin + wideningI + wideningJ;
-  ContactManifold m = collideBoxes(Obb::of(bodyI), Obb::of(bodyJ), pairMargin);
+  ContactManifold m = kept.collide(i, Obb::of(bodyI), j, Obb::of(bodyJ), pairMargin);
   // Closer than the margin along every axis, yet no point: boxes passing corner by corner.
   // The pair stays, with no points, and gets the exact narrow phase every pass.
   if (m.depth <= -pairMargin) return -1;
@@ -125,7 +126,8 @@ bool SlowPairCache::predictedContact(const World& world, const CachedPair& pair,
 
 bool SlowPairCache::passContact(const World& world, const StepBodies& bodies, std::size_t k,
                                 const Vec3& gravityStep, double dt, double margin,
-                                ContactNormalTracker& normals, ImpulseContact& contact) {
+                                ContactNormalTracker& normals, KeptNarrowPhase& kept,
+                                ImpulseContact& contact) {
   const PairReach& reach = reaches_[k];
   // Too far apart for any point to come within the margin: no contact, as predictedContact
   // would find, without reading the points.
@@ -143,7 +145,7 @@ bool SlowPairCache::passContact(const World& world, const StepBodies& bodies, st
   // moved since the first pass that looked: the narrow phase answers as then.
   if (pair.exact == kExactUnknown) {
     pair.exact = static_cast<int>(exactManifolds_.size());
-    exactManifolds_.push_back(collideBoxes(Obb::of(world.bodies[reach.a]),
+    exactManifolds_.push_back(kept.collide(reach.a, Obb::of(world.bodies[reach.a]), reach.b,
                                            Obb::of(world.bodies[reach.b]), margin));
     exactManifolds_.back().a = reach.a;
     exactManifolds_.back().b = reach.b;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "boxsim/collision/contact.hpp"
+#include "boxsim/collision/kept_narrow_phase.hpp"
 #include "boxsim/core/world.hpp"
 #include "boxsim/impulse_damped/contact_normal.hpp"
 #include "boxsim/impulse_damped/step_bodies.hpp"
@@ -48,9 +49,10 @@ class SlowPairCache {
   /// than a slow body can move in a pass), finds them closer than `margin` (m) plus both
   /// widenings; a pair with a fast body needs manifold points besides. Keeps the normal model's
   /// contact now and the manifold's points. Returns the pair's index in the cache, or -1 when
-  /// it is not cached. Pairs must come in increasing (i, j) order.
+  /// it is not cached. Pairs must come in increasing (i, j) order. The narrow phase runs
+  /// through `kept`.
   int add(const World& world, const StepBodies& bodies, int i, int j, double margin,
-          double slowWidening, ContactNormalTracker& normals);
+          double slowWidening, ContactNormalTracker& normals, KeptNarrowPhase& kept);
 
   /// The cached pairs' bodies and reach, in cache order.
   const std::vector<PairReach>& reaches() const { return reaches_; }
@@ -63,10 +65,10 @@ class SlowPairCache {
   /// Cached pair k's contact in this pass, from its predicted points or, with none to predict
   /// from, from the narrow phase where its slow bodies stand (the same in every pass of the
   /// step); false when none is within `margin` (m). Remembers its face in the normal model
-  /// once while the pair stays slow.
+  /// once while the pair stays slow. A narrow phase runs through `kept`.
   bool passContact(const World& world, const StepBodies& bodies, std::size_t k,
                    const Vec3& gravityStep, double dt, double margin,
-                   ContactNormalTracker& normals, ImpulseContact& contact);
+                   ContactNormalTracker& normals, KeptNarrowPhase& kept, ImpulseContact& contact);
   /// Cached pair k is gathered as written in this pass (one of its bodies turned fast): what
   /// it remembered of its face comes after anything remembered before.
   void forgetFace(std::size_t k) { pairs_[k].remembered = false; }

@@ -1,0 +1,77 @@
+/// \file
+/// The narrow phases of a step, kept: the separating-axis test of each pair of boxes
+/// (separatingAxisTest, \thesis{§3.2}) remembered with the two poses it was run at, and handed
+/// back instead of run again while both boxes stand exactly there.
+///
+/// A step of damped integration (\alg{A.2}) asks for the narrow phase of the same pair at the
+/// same poses several times: FIXCONTACTCONSTRAINTS finds the contacts where the step leaves the
+/// bodies (\alg{DAMPEDINTEGRATION L5}) and tests each contact again before it nudges; the next
+/// step's once-per-step gathering finds them at its start, which are those very poses; a body
+/// that DAMPENOBJECTS snapped (\alg{DAMPENOBJECTS L23-L28}) or that sleeps stands bitwise still
+/// for many steps. The test depends on the two boxes alone (centre, axes, half extents), so a
+/// kept result is the result the test would give, bit for bit: keeping changes no trajectory,
+/// only the time (tested: collision_test.cpp against the test itself, determinism_test.cpp on
+/// whole trajectories).
+///
+/// This is the first part of the persistent contacts of Bullet (btPersistentManifold) and
+/// Jolt (ContactConstraintManager): those keep a pair's features while its relative pose moves
+/// within a bound and so change the contacts a little; this keeps them only for the same
+/// poses and changes nothing.
+#pragma once
+
+#include <cstdint>
+#include <unordered_map>
+
+#include "boxsim/collision/contact.hpp"
+#include "boxsim/collision/contact_manifold.hpp"
+#include "boxsim/collision/obb.hpp"
+#include "boxsim/collision/separating_axis.hpp"
+
+namespace boxsim {
+
+/// The separating-axis tests of the pairs of one world, kept between calls and steps (the file
+/// comment). Pairs are named by the body indices of their two boxes in the order the caller
+/// passes them: (i, j) and (j, i) are kept apart, since the swapped test's result agrees with
+/// the swapped result only up to the signs of zero components of the normal. Use:
+/// axis() or collide() for every narrow phase, endStep() once per step. Results are those of
+/// separatingAxisTest with default SeparatingAxisParams.
+class KeptNarrowPhase {
+ public:
+  /// A store that keeps the tests it runs; with `keep` false it runs every test asked for and
+  /// keeps none (the same results: for comparisons).
+  explicit KeptNarrowPhase(bool keep = true) : keep_(keep) {}
+
+  /// separatingAxisTest(a, b) for box a of body i and box b of body j (i != j, both >= 0):
+  /// the kept result when both boxes are bitwise those of the last test of (i, j), else the
+  /// test run now and kept.
+  SeparatingAxisResult axis(int i, const Obb& a, int j, const Obb& b);
+  /// collideBoxes(a, b, margin) with the test taken from axis(i, a, j, b); m, margin >= 0.
+  /// Fields a and b of the manifold are left at -1, as collideBoxes leaves them.
+  ContactManifold collide(int i, const Obb& a, int j, const Obb& b, double margin) {
+    return buildContactManifold(a, b, axis(i, a, j, b), margin);
+  }
+  /// Ends a step: pairs not asked for in the step that ends are forgotten, so the store holds
+  /// the pairs that are near now, not every pair that ever was.
+  void endStep();
+  /// Forgets every kept test (a world replaced by another, say).
+  void clear() { kept_.clear(); }
+
+  /// Tests run since construction (the narrow phases this store did not spare).
+  long tests() const { return tests_; }
+  /// Tests handed back from the store since construction.
+  long reuses() const { return reuses_; }
+
+ private:
+  struct Entry {
+    Obb a, b;
+    SeparatingAxisResult result;
+    long step = 0;  ///< one more than the step it was last asked for in
+  };
+  std::unordered_map<std::uint64_t, Entry> kept_;  ///< by (i, j); looked up, never iterated in order
+  bool keep_;
+  long step_ = 0;
+  long tests_ = 0;
+  long reuses_ = 0;
+};
+
+}  // namespace boxsim
