@@ -61,6 +61,7 @@ std::map<std::string, std::string> DampedIntegrationStepper::parameters() const 
       {"fix_side_share_deg", shortestText(params_.fixContacts.sideShareAngleDeg)},
       {"sleep", s.enabled ? "on" : "off"},
       {"sleep_time_s", shortestText(s.timeToSleep)},
+      {"sleep_still_by", s.stillByPose ? "pose" : "pose_and_momenta"},
       {"wake_speed_g_dt", shortestText(s.wakeSpeed)},
       {"wake_impulse_g_dt", shortestText(s.wakeImpulse)},
       {"support_normal_y", shortestText(s.supportNormalY)},

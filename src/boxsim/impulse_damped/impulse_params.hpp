@@ -221,12 +221,23 @@ struct FixContactParams {
 struct SleepParams {
   /// Ablation switch: false keeps every body awake, \alg{A.2} as written.
   bool enabled = true;
-  /// s: how long a body must have had exactly zero momenta and an unchanged pose before it falls
+  /// s: how long a body must have been still (stillByPose says what that is) before it falls
   /// asleep; turned into round(t / Δt) steps, at least 1. 0.5 s (30 steps at 60 Hz): DAMPENOBJECTS'
   /// zeroing and snap (\alg{DAMPENOBJECTS L14-L28}) can hold a slowly toppling box still for a few
   /// steps while gravity builds its velocity up again; half a second of stillness is well beyond
   /// that, and short enough that a settled pile stops costing almost at once.
   double timeToSleep = 0.5;
+  /// What makes a step still for a body. true: the step left its pose bitwise unchanged,
+  /// whatever momenta it keeps. A touched body's pose stays put only where DAMPENOBJECTS'
+  /// snap (\alg{DAMPENOBJECTS L23-L28}) held it, which it does when the step would move it less
+  /// than ε10 g Δt² and turn it less than ε11 g Δt² / ℓ, over its support: the step's net
+  /// motion, not its momenta, is what is judged. In a heap the contact passes give a resting
+  /// box the same small angular momentum step after step (the gravity trick at corners that
+  /// are not level, about 0.05 rad/s in the clump on the ground), which damping cannot zero and
+  /// the snap keeps from moving it; such boxes, and everything resting on them, never slept.
+  /// A body falling asleep has its momenta zeroed. false: the momenta must be exactly zero as
+  /// well (the rule before; a clump of 100 on the ground then has 52 of 100 asleep at 15 s).
+  bool stillByPose = true;
   /// g Δt: a sleeping body wakes when an awake body comes at it faster than this along the
   /// contact normal. 4 g Δt (0.65 m/s at 60 Hz, the speed of a drop from 2.2 cm): twice
   /// DampingParams::verticalVelocityEps, below which damping treats a body as resting, so a box

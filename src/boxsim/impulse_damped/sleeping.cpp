@@ -222,14 +222,14 @@ void Sleeping::end(World& world, const std::vector<ContactManifold>& contacts,
     if (m.depth > slop_ * ell) wake(world, asleep_[m.a] ? m.a : m.b);
   }
   restoreAll(world);
-  // Stillness: momenta exactly zero and a pose the step did not change, bit for bit; and,
-  // with chatter detection, the window of each awake body.
+  // Stillness: a pose the step did not change, bit for bit (and with stillByPose off, momenta
+  // exactly zero); and, with chatter detection, the window of each awake body.
   const long steps = std::max(1L, std::lround(params_.timeToSleep / dt));
   for (std::size_t i = 0; i < n; ++i) {
     const RigidBody& b = world.bodies[i];
     if (b.immovable || asleep_[i]) continue;
-    const bool still =
-        momentaZero(b.s) && b.s.x == start_[i].x && b.s.q.coeffs() == start_[i].q.coeffs();
+    const bool still = (params_.stillByPose || momentaZero(b.s)) && b.s.x == start_[i].x &&
+                       b.s.q.coeffs() == start_[i].q.coeffs();
     stillSteps_[i] = still ? stillSteps_[i] + 1 : 0;
     if (params_.chatterDetection) chatter_.record(i, b, world.gravity, steps);
   }
@@ -248,7 +248,8 @@ void Sleeping::end(World& world, const std::vector<ContactManifold>& contacts,
         if (supportedBy(c, static_cast<int>(i)) && !holds) supported = false;
       }
       if (!supported) continue;
-      // A chattering body is put to rest: the momenta it keeps go nowhere (ChatterHistory).
+      // A chattering body, or one whose pose the snap holds, is put to rest: the momenta it
+      // keeps go nowhere (ChatterHistory, SleepParams::stillByPose).
       RigidBody& b = world.bodies[i];
       if (!momentaZero(b.s)) {
         b.s.P.setZero();

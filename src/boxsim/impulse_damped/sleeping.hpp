@@ -20,8 +20,9 @@ namespace boxsim {
 /// as damped integration (\alg{A.2}) runs it. It owns the per-body sleep state between steps.
 ///
 /// - *Falling asleep.* A movable body that has ended `round(timeToSleep / Δt)` consecutive
-///   steps with momenta exactly zero (DAMPENOBJECTS zeroes small ones) and a pose bitwise
-///   unchanged by the step falls asleep, provided every body supporting it (a contact whose
+///   steps with a pose bitwise unchanged by the step (DAMPENOBJECTS' snap holds a resting
+///   body's pose; with SleepParams::stillByPose off, momenta exactly zero as well) falls
+///   asleep, its momenta zeroed, provided every body supporting it (a contact whose
 ///   normal, pointing to it, has y above `supportNormalY`) is asleep or immovable. Bodies fall
 ///   asleep from the ground up, so a sleeping body's supports never move while it sleeps.
 ///   With SleepParams::chatterDetection on, a body that chatters over the same time
