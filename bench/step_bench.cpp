@@ -9,7 +9,11 @@
 /// Reading the table: every case repeats its measurement a few times and prints only the
 /// aggregates. "Time" is wall-clock milliseconds per step (the `_median` row is the number to
 /// quote), "CPU" the same in process CPU time; `contacts` and `sleeping` are per-step averages
-/// of StepStats over the timed steps. A label states the target the project set for that case.
+/// of StepStats over the timed steps; damped integration's cases add the ms per step of each
+/// stage of \alg{A.2} (DampedStepProfile: ms_start the contacts at the step's start, ms_collide
+/// and ms_contact the passes, ms_damp gravity and DAMPENOBJECTS, ms_fix FIXCONTACTCONSTRAINTS,
+/// ms_stable SETGEOMETRICALLYSTABLE, ms_sleep sleeping) and the separating-axis tests per step
+/// (sat; sat_pass those of the passes). A label states the target the project set for that case.
 /// The `_cv` row is the spread between repetitions: above a few percent, something else was
 /// using the machine and the numbers are indicative only. "Library was built as DEBUG" is about
 /// Debian's build of Google Benchmark itself; boxsim is timed as configured (Release).
@@ -32,6 +36,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "boxsim/core/world.hpp"
@@ -137,6 +142,12 @@ struct TimedCase {
     if (!warm) warm = warmedUp(c, fresh);
     World world = warm->world;
     StepperT stepper = warm->stepper;
+    // Damped integration: where the time goes, stage by stage (DampedStepProfile), and its work.
+    boxsim::DampedStepProfile profile;
+    const auto watch = [&profile](StepperT& s) {
+      if constexpr (std::is_same_v<StepperT, DampedIntegrationStepper>) s.setProfile(&profile);
+    };
+    watch(stepper);
     int k = 0;
     double contacts = 0.0;
     double sleeping = 0.0;
@@ -148,6 +159,7 @@ struct TimedCase {
         stillFinite = stillFinite && finite(world);
         world = warm->world;
         stepper = warm->stepper;
+        watch(stepper);
         k = 0;
         state.ResumeTiming();
       }
@@ -165,6 +177,22 @@ struct TimedCase {
     state.counters["contacts"] = benchmark::Counter(contacts, benchmark::Counter::kAvgIterations);
     if (sleeps)
       state.counters["sleeping"] = benchmark::Counter(sleeping, benchmark::Counter::kAvgIterations);
+    if (profile.steps > 0) {
+      // ms per step in each stage of A.2 (each with the contact gathering and narrow phases it
+      // runs), and separating-axis tests per step, all of them and those of the passes.
+      const auto perStep = [&state](const char* name, double total) {
+        state.counters[name] = benchmark::Counter(total, benchmark::Counter::kAvgIterations);
+      };
+      perStep("ms_start", 1e3 * profile.stepContacts);
+      perStep("ms_collide", 1e3 * profile.collisionPasses);
+      perStep("ms_contact", 1e3 * profile.contactPasses);
+      perStep("ms_damp", 1e3 * profile.velocitiesAndDamping);
+      perStep("ms_fix", 1e3 * profile.fixContacts);
+      perStep("ms_stable", 1e3 * profile.stability);
+      perStep("ms_sleep", 1e3 * profile.sleeping);
+      perStep("sat", static_cast<double>(profile.narrowPhases));
+      perStep("sat_pass", static_cast<double>(profile.passNarrowPhases));
+    }
     if (!c.aim.empty()) state.SetLabel(c.aim);
   }
 };
