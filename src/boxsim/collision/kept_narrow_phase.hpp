@@ -19,14 +19,11 @@
 /// poses and changes nothing.
 #pragma once
 
-#include <cstddef>
-#include <cstdint>
-#include <vector>
-
 #include "boxsim/collision/contact.hpp"
 #include "boxsim/collision/contact_manifold.hpp"
 #include "boxsim/collision/obb.hpp"
 #include "boxsim/collision/separating_axis.hpp"
+#include "boxsim/core/pair_table.hpp"
 
 namespace boxsim {
 
@@ -55,36 +52,25 @@ class KeptNarrowPhase {
   /// the pairs that are near now, not every pair that ever was.
   void endStep();
   /// Forgets every kept test (a world replaced by another, say).
-  void clear();
+  void clear() { kept_.clear(); }
 
   /// Tests run since construction (the narrow phases this store did not spare).
   long tests() const { return tests_; }
   /// Tests handed back from the store since construction.
   long reuses() const { return reuses_; }
-  /// Narrow phases asked for since construction (tests() + reuses()).
-  long asked() const { return asked_; }
 
  private:
   struct Entry {
-    std::uint64_t key;  ///< (i, j), pairKey
-    long step;          ///< one more than the step it was last asked for in
-    Obb a, b;           ///< the boxes it was run for
+    long step = 0;  ///< one more than the step it was last asked for in
+    Obb a, b;       ///< the boxes it was run for
     SeparatingAxisResult result;
   };
-  /// The slot of `key` in slots_: the one holding it, or the empty one where it would go.
-  std::size_t slotOf(std::uint64_t key) const;
-  /// Makes slots_ a table of `capacity` (a power of two) slots holding every entry.
-  void rebuildSlots(std::size_t capacity);
 
-  std::vector<Entry> entries_;  ///< the kept tests, in the order they were first asked for
-  /// Open addressing with linear probing: 0 empty, else 1 + an index into entries_. Looked up
-  /// by key only, so its layout never decides a result.
-  std::vector<std::uint32_t> slots_;
+  PairTable<Entry> kept_;  ///< by (i, j)
   bool keep_;
   long step_ = 0;
   long tests_ = 0;
   long reuses_ = 0;
-  long asked_ = 0;
 };
 
 }  // namespace boxsim

@@ -1,0 +1,86 @@
+/// \file
+/// A table of values by pair of body indices, for what a step keeps per pair (the friction
+/// sums of a step, the kept narrow phases): open addressing with linear probing over a flat
+/// array, values in the order they were first asked for. It keeps its memory when it is
+/// emptied or thinned, so a step that asks for about the pairs the last one did allocates
+/// nothing.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace boxsim {
+
+/// Values of type T by ordered pair (i, j) of body indices (i, j >= 0). Lookups go by key
+/// only, so the table's layout never decides a result. References to values stay valid until
+/// the next insertion, retain() or clear().
+template <class T>
+class PairTable {
+ public:
+  /// The value of (i, j), default-constructed and inserted when absent; `inserted`, when
+  /// given, says which.
+  T& at(int i, int j, bool* inserted = nullptr) {
+    if (2 * (keys_.size() + 1) > slots_.size()) rebuild(slots_.empty() ? 64 : 2 * slots_.size());
+    const std::uint64_t key = keyOf(i, j);
+    const std::size_t slot = slotOf(key);
+    if (inserted) *inserted = slots_[slot] == 0;
+    if (slots_[slot] != 0) return values_[slots_[slot] - 1];
+    keys_.push_back(key);
+    values_.emplace_back();
+    slots_[slot] = static_cast<std::uint32_t>(keys_.size());
+    return values_.back();
+  }
+  /// Keeps only the values for which keep(value) is true, in their order.
+  template <class Keep>
+  void retain(Keep keep) {
+    std::size_t kept = 0;
+    for (std::size_t e = 0; e < values_.size(); ++e) {
+      if (!keep(values_[e])) continue;
+      if (kept != e) {
+        keys_[kept] = keys_[e];
+        values_[kept] = std::move(values_[e]);
+      }
+      ++kept;
+    }
+    keys_.resize(kept);
+    values_.resize(kept);
+    if (!slots_.empty()) rebuild(slots_.size());
+  }
+  /// Forgets every value.
+  void clear() {
+    keys_.clear();
+    values_.clear();
+    slots_.assign(slots_.size(), 0);
+  }
+  /// The number of values held.
+  std::size_t size() const { return values_.size(); }
+
+ private:
+  static std::uint64_t keyOf(int i, int j) {
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(i)) << 32) |
+           static_cast<std::uint32_t>(j);
+  }
+  /// The slot holding `key`, or the empty one where it would go: Fibonacci hashing, then
+  /// linear probing.
+  std::size_t slotOf(std::uint64_t key) const {
+    const std::size_t mask = slots_.size() - 1;
+    std::size_t slot = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 32) & mask;
+    while (slots_[slot] != 0 && keys_[slots_[slot] - 1] != key) slot = (slot + 1) & mask;
+    return slot;
+  }
+  /// A table of `capacity` slots (a power of two) holding every key.
+  void rebuild(std::size_t capacity) {
+    slots_.assign(capacity, 0);
+    for (std::size_t e = 0; e < keys_.size(); ++e)
+      slots_[slotOf(keys_[e])] = static_cast<std::uint32_t>(e + 1);
+  }
+
+  std::vector<std::uint64_t> keys_;
+  std::vector<T> values_;
+  /// 0 empty, else 1 + an index into keys_ and values_; at most half full.
+  std::vector<std::uint32_t> slots_;
+};
+
+}  // namespace boxsim
