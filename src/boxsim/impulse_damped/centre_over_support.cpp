@@ -111,12 +111,18 @@ std::vector<SupportVerdict> centreOverSupport(const World& world,
                                               const std::vector<ContactManifold>& contacts,
                                               const SupportTestParams& params) {
   const std::size_t n = world.bodies.size();
-  // Every body's level faces, once: a body meets several others.
-  std::vector<LevelFace> downFace(n), upFace(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    downFace[i] = levelFace(world.bodies[i], false, params.alignedAngleDeg);
-    upFace[i] = levelFace(world.bodies[i], true, params.alignedAngleDeg);
-  }
+  // A body's level faces, once, and only those a contact asks for: a body meets several
+  // others, and a sleeping one (immovable for the step) needs no lower face.
+  std::vector<LevelFace> faces(2 * n);
+  std::vector<char> found(2 * n, 0);
+  const auto faceOf = [&](int body, bool up) -> const LevelFace& {
+    const std::size_t k = 2 * static_cast<std::size_t>(body) + (up ? 1 : 0);
+    if (!found[k]) {
+      faces[k] = levelFace(world.bodies[static_cast<std::size_t>(body)], up, params.alignedAngleDeg);
+      found[k] = 1;
+    }
+    return faces[k];
+  };
   std::vector<std::vector<Vec2>> support(n);
   // Per body: the lowest and highest point of its supporting top faces over their patches, m,
   // and whether every support so far was such a face.
@@ -131,8 +137,8 @@ std::vector<SupportVerdict> centreOverSupport(const World& world,
       std::vector<Vec2>& points = support[upper];
       // A face down on a face up: where the two faces touch, whatever axis the narrow phase took
       // for the pair (a side face's, when a corner of one lies near the rim of the other).
-      const LevelFace& bottom = downFace[upper];
-      const LevelFace& top = upFace[lower];
+      const LevelFace& bottom = faceOf(upper, false);
+      const LevelFace& top = faceOf(lower, true);
       if (!bottom.outline.empty() && !top.outline.empty()) {
         const std::vector<Vec2> patch = contactPatch(bottom, top, params.contactBand);
         if (!patch.empty()) {

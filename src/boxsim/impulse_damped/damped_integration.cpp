@@ -313,7 +313,8 @@ void DampedIntegrationStepper::endStep(World& world, double dt,
   // them, so a pair that wakes keeps the normal it had (\thesis{§3.3.2}) and waking changes
   // nothing the normal model remembers.
   if (sleeping && gathering_.normals().model() == ContactNormalModel::PreviousClosestFace)
-    gathering_.normals().contactsOf(world, sleeping_.skippedContacts(world));
+    for (const ContactManifold& m : sleeping_.skippedContacts(world))
+      gathering_.normals().remember(world, m);
   gathering_.endStep();
   if (sleeping) {
     sleeping_.end(world, contacts, stable_, dt);
