@@ -231,6 +231,11 @@ void gridPairs(const World& world, const std::vector<Vec3>& lo, const std::vecto
       pairs.emplace_back(std::min(a, b), std::max(a, b));
     }
   };
+  // Cells holding a movable body: two cells of immovable bodies alone (sleepers of a settled
+  // pile, §4.5) pair nothing, and are not looked into.
+  std::vector<char> movableIn(grid.start.size(), 0);
+  for (std::size_t p = 0; p < m; ++p)
+    if (!sortedImmovable[p]) movableIn[static_cast<std::size_t>(grid.cell[p])] = 1;
   const Eigen::Vector3i& d = grid.dims;
   for (int begin = 0; begin < static_cast<int>(m);) {
     // The run of bodies in one cell: order[begin, end). Read from the body, not found by
@@ -238,14 +243,17 @@ void gridPairs(const World& world, const std::vector<Vec3>& lo, const std::vecto
     const int c = grid.cell[begin];
     const int end = grid.start[c + 1];
     const int x = c % d.x(), y = (c / d.x()) % d.y(), z = c / (d.x() * d.y());
-    for (int p = begin; p < end; ++p)
-      for (int q = p + 1; q < end; ++q) test(p, q);
+    const bool movableHere = movableIn[static_cast<std::size_t>(c)];
+    if (movableHere)
+      for (int p = begin; p < end; ++p)
+        for (int q = p + 1; q < end; ++q) test(p, q);
     for (int dz = 0; dz <= 1; ++dz)
       for (int dy = dz == 0 ? 0 : -1; dy <= 1; ++dy)
         for (int dx = (dz == 0 && dy == 0) ? 1 : -1; dx <= 1; ++dx) {
           const int nx = x + dx, ny = y + dy, nz = z + dz;
           if (nx < 0 || ny < 0 || nx >= d.x() || ny >= d.y() || nz >= d.z()) continue;
           const int o = (nz * d.y() + ny) * d.x() + nx;
+          if (!movableHere && !movableIn[static_cast<std::size_t>(o)]) continue;
           for (int q = grid.start[o]; q < grid.start[o + 1]; ++q)
             for (int p = begin; p < end; ++p) test(p, q);
         }
