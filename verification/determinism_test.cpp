@@ -58,6 +58,18 @@ World fastClump() {
   return world;
 }
 
+/// The fast clump with Coulomb friction (mu = 0.5) on every body, beside a pyramid of base 3
+/// 40 m away that settles apart from it.
+World frictionalClump() {
+  World world = fastClump();
+  PyramidSpec far;
+  far.base = 3;
+  far.origin = Vec3(40.0, 0.0, 0.0);
+  addPyramid(world, far);
+  for (RigidBody& body : world.bodies) body.friction = {0.5, 0.5};
+  return world;
+}
+
 /// makeStepper(method), except that the swept timewarp stops a frame after its share of 1000
 /// events (workload.hpp; all 1000, its default, unless BOXSIM_TEST_WORKLOAD asks for less).
 std::unique_ptr<Stepper> stepperOf(const std::string& method) {
@@ -207,12 +219,7 @@ TEST_CASE("Damped integration gives the same bits whether or not settled islands
   // which settles apart from it; and the ricochet into a settled island. Sleeping is on (the
   // stepper's default), so sleepers stand in as immovable between islands and wake within
   // passes.
-  World frictional = fastClump();
-  PyramidSpec far;
-  far.base = 3;
-  far.origin = Vec3(40.0, 0.0, 0.0);
-  addPyramid(frictional, far);
-  for (RigidBody& body : frictional.bodies) body.friction = {0.5, 0.5};
+  const World frictional = frictionalClump();
   // At least half a second even under a reduced workload: the fast clump's cubes need about
   // 18 steps (0.3 s) to fly apart into islands that settle.
   const int steps = static_cast<int>(std::max(30L, testing::scaledCount(90)));
@@ -251,12 +258,7 @@ TEST_CASE("Damped integration gives the same bits whether or not it keeps the na
           "[impulse_damped][determinism][kept]") {
   // The resting pyramid hit by a die, the fast clump, and the clump with Coulomb friction on a
   // far pyramid (contacts at rest, impacts, friction's patches).
-  World frictional = fastClump();
-  PyramidSpec far;
-  far.base = 3;
-  far.origin = Vec3(40.0, 0.0, 0.0);
-  addPyramid(frictional, far);
-  for (RigidBody& body : frictional.bodies) body.friction = {0.5, 0.5};
+  const World frictional = frictionalClump();
   const int steps = static_cast<int>(std::max(30L, testing::scaledCount(90)));
   for (const World& start : {manyContacts(), fastClump(), frictional}) {
     std::vector<double> states[2];
