@@ -2,6 +2,8 @@
 /// The narrow phases of a step, kept (kept_narrow_phase.hpp).
 #include "boxsim/collision/kept_narrow_phase.hpp"
 
+#include <algorithm>
+
 #include "boxsim/core/math.hpp"
 
 namespace boxsim {
@@ -15,30 +17,47 @@ bool sameBox(const Obb& x, const Obb& y) {
 }
 }  // namespace
 
+long KeptNarrowPhase::versionOf(int body, const Obb& box) {
+  const std::size_t k = static_cast<std::size_t>(body);
+  if (k >= seen_.size()) {
+    seen_.resize(k + 1);
+    kept_.resize(k + 1);
+  }
+  Seen& seen = seen_[k];
+  if (seen.version == 0 || !sameBox(seen.box, box)) {
+    seen.box = box;
+    seen.version = ++versions_;
+  }
+  return seen.version;
+}
+
 SeparatingAxisResult KeptNarrowPhase::axis(int i, const Obb& a, int j, const Obb& b) {
   if (!keep_) {
     ++tests_;
     return separatingAxisTest(a, b);
   }
-  bool inserted = false;
-  Entry& entry = kept_.at(i, j, &inserted);
-  entry.step = step_ + 1;
-  if (!inserted && sameBox(entry.a, a) && sameBox(entry.b, b)) {
+  const long versionA = versionOf(i, a), versionB = versionOf(j, b);
+  std::vector<Entry>& list = kept_[static_cast<std::size_t>(i)];
+  auto entry = std::find_if(list.begin(), list.end(), [j](const Entry& e) { return e.j == j; });
+  if (entry != list.end() && entry->versionA == versionA && entry->versionB == versionB) {
+    entry->step = step_ + 1;
     ++reuses_;
-    return entry.result;
+    return entry->result;
   }
-  entry.a = a;
-  entry.b = b;
-  entry.result = separatingAxisTest(a, b);
+  if (entry == list.end()) entry = list.insert(list.end(), Entry{j, 0, 0, 0, {}});
+  *entry = Entry{j, step_ + 1, versionA, versionB, separatingAxisTest(a, b)};
   ++tests_;
-  return entry.result;
+  return entry->result;
 }
 
 void KeptNarrowPhase::endStep() {
   ++step_;
   // An entry holds the step after the one it was last asked for in: keep those asked for in
   // the step that ends.
-  kept_.retain([this](const Entry& entry) { return entry.step >= step_; });
+  for (std::vector<Entry>& list : kept_)
+    list.erase(std::remove_if(list.begin(), list.end(),
+                              [this](const Entry& e) { return e.step < step_; }),
+               list.end());
 }
 
 }  // namespace boxsim

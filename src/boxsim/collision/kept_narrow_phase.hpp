@@ -19,11 +19,12 @@
 /// poses and changes nothing.
 #pragma once
 
+#include <vector>
+
 #include "boxsim/collision/contact.hpp"
 #include "boxsim/collision/contact_manifold.hpp"
 #include "boxsim/collision/obb.hpp"
 #include "boxsim/collision/separating_axis.hpp"
-#include "boxsim/core/pair_table.hpp"
 
 namespace boxsim {
 
@@ -51,8 +52,6 @@ class KeptNarrowPhase {
   /// Ends a step: pairs not asked for in the step that ends are forgotten, so the store holds
   /// the pairs that are near now, not every pair that ever was.
   void endStep();
-  /// Forgets every kept test (a world replaced by another, say).
-  void clear() { kept_.clear(); }
 
   /// Tests run since construction (the narrow phases this store did not spare).
   long tests() const { return tests_; }
@@ -60,13 +59,30 @@ class KeptNarrowPhase {
   long reuses() const { return reuses_; }
 
  private:
+  /// What the store last saw of a body: its box, and a number that changes whenever the box
+  /// does (bit for bit).
+  struct Seen {
+    Obb box;
+    long version = 0;  ///< 0: never seen
+  };
+  /// A kept test of pair (i, j), in body i's list.
   struct Entry {
-    long step = 0;  ///< one more than the step it was last asked for in
-    Obb a, b;       ///< the boxes it was run for
+    int j;
+    long step;      ///< one more than the step it was last asked for in
+    long versionA;  ///< body i's version when it ran
+    long versionB;  ///< body j's version when it ran
     SeparatingAxisResult result;
   };
+  /// Body `body`'s version for `box`: the one it had if the box is bitwise the last seen, else
+  /// a new one.
+  long versionOf(int body, const Obb& box);
 
-  PairTable<Entry> kept_;  ///< by (i, j)
+  /// Per body i, the tests of the pairs (i, j) kept, in the order they were first asked for.
+  /// A step asks for a body's pairs together (pairs come sorted by body), so a lookup reads one
+  /// short list that is already in the cache, where a table by pair would read a random slot.
+  std::vector<std::vector<Entry>> kept_;
+  std::vector<Seen> seen_;  ///< per body
+  long versions_ = 0;       ///< the last version handed out
   bool keep_;
   long step_ = 0;
   long tests_ = 0;

@@ -24,12 +24,12 @@ class PairTable {
   T& at(int i, int j, bool* inserted = nullptr) {
     if (2 * (keys_.size() + 1) > slots_.size()) rebuild(slots_.empty() ? 64 : 2 * slots_.size());
     const std::uint64_t key = keyOf(i, j);
-    const std::size_t slot = slotOf(key);
-    if (inserted) *inserted = slots_[slot] == 0;
-    if (slots_[slot] != 0) return values_[slots_[slot] - 1];
+    Slot& slot = slots_[slotOf(key)];
+    if (inserted) *inserted = slot.index == 0;
+    if (slot.index != 0) return values_[slot.index - 1];
     keys_.push_back(key);
     values_.emplace_back();
-    slots_[slot] = static_cast<std::uint32_t>(keys_.size());
+    slot = Slot{key, static_cast<std::uint32_t>(keys_.size())};
     return values_.back();
   }
   /// Keeps only the values for which keep(value) is true, in their order.
@@ -52,35 +52,41 @@ class PairTable {
   void clear() {
     keys_.clear();
     values_.clear();
-    slots_.assign(slots_.size(), 0);
+    slots_.assign(slots_.size(), Slot{});
   }
-  /// The number of values held.
-  std::size_t size() const { return values_.size(); }
 
  private:
   static std::uint64_t keyOf(int i, int j) {
     return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(i)) << 32) |
            static_cast<std::uint32_t>(j);
   }
-  /// The slot holding `key`, or the empty one where it would go: Fibonacci hashing, then
-  /// linear probing.
+  /// A slot of the table: a key and 1 + the index of its value, or index 0 when empty. The key
+  /// sits in the slot so that probing reads the table alone.
+  struct Slot {
+    std::uint64_t key = 0;
+    std::uint32_t index = 0;
+  };
+  /// The slot holding `key`, or the empty one where it would go: Fibonacci hashing (the top
+  /// bits of key times 2⁶⁴/φ), then linear probing.
   std::size_t slotOf(std::uint64_t key) const {
     const std::size_t mask = slots_.size() - 1;
-    std::size_t slot = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 32) & mask;
-    while (slots_[slot] != 0 && keys_[slots_[slot] - 1] != key) slot = (slot + 1) & mask;
+    std::size_t slot = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> shift_);
+    while (slots_[slot].index != 0 && slots_[slot].key != key) slot = (slot + 1) & mask;
     return slot;
   }
-  /// A table of `capacity` slots (a power of two) holding every key.
+  /// A table of `capacity` slots (a power of two, at least 2) holding every key.
   void rebuild(std::size_t capacity) {
-    slots_.assign(capacity, 0);
+    slots_.assign(capacity, Slot{});
+    shift_ = 64;
+    for (std::size_t c = capacity; c > 1; c >>= 1) --shift_;
     for (std::size_t e = 0; e < keys_.size(); ++e)
-      slots_[slotOf(keys_[e])] = static_cast<std::uint32_t>(e + 1);
+      slots_[slotOf(keys_[e])] = Slot{keys_[e], static_cast<std::uint32_t>(e + 1)};
   }
 
   std::vector<std::uint64_t> keys_;
   std::vector<T> values_;
-  /// 0 empty, else 1 + an index into keys_ and values_; at most half full.
-  std::vector<std::uint32_t> slots_;
+  std::vector<Slot> slots_;  ///< at most half full
+  int shift_ = 64;           ///< 64 - log2(slots_.size())
 };
 
 }  // namespace boxsim
