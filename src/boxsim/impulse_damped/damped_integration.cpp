@@ -161,7 +161,6 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   const long passTestsBefore = gathering_.passNarrowPhases();
   const long testsBefore = gathering_.kept().tests() + passTestsBefore;
   const long reusesBefore = gathering_.kept().reuses();
-
   // Bodies that take part in a contact (or, with dampCollidingBodies, a collision) this step.
   std::vector<char> touched(n, 0);
   // The contacts of the step's start, found before the first pass would find them.

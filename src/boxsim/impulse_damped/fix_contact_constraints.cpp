@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <tuple>
+#include <utility>
 
 #include "boxsim/collision/broad_phase.hpp"
 #include "boxsim/collision/separating_axis.hpp"
@@ -26,12 +27,15 @@ int fixContactConstraints(World& world, double margin, const FixContactParams& p
   // FIXCONTACTCONSTRAINTS L1: sortContactPointsAscending.
   std::vector<ContactManifold> contacts =
       findContacts(world, margin, pairs ? *pairs : candidatePairs(world, margin), kept);
-  if (gathered) *gathered = contacts;
-  const auto key = [](const ContactManifold& m) { return std::make_tuple(m.centroid().y(), m.a, m.b); };
-  std::stable_sort(contacts.begin(), contacts.end(),
-                   [&](const ContactManifold& l, const ContactManifold& r) { return key(l) < key(r); });
+  // The order by height, as indices: the manifolds themselves stay in findContacts order for
+  // `gathered`, and are not moved about by the sort.
+  std::vector<std::tuple<double, int, int, std::size_t>> order(contacts.size());
+  for (std::size_t k = 0; k < contacts.size(); ++k)
+    order[k] = {contacts[k].centroid().y(), contacts[k].a, contacts[k].b, k};
+  std::stable_sort(order.begin(), order.end());
   int nudges = 0;
-  for (const ContactManifold& c : contacts) {  // FIXCONTACTCONSTRAINTS L2
+  for (const auto& entry : order) {  // FIXCONTACTCONSTRAINTS L2
+    const ContactManifold& c = contacts[std::get<3>(entry)];
     // FIXCONTACTCONSTRAINTS L3-L5: the upper body moves, along the normal pointing from the lower
     // one to it.
     const bool aUpper = world.bodies[c.a].s.x.y() > world.bodies[c.b].s.x.y();
@@ -76,6 +80,7 @@ int fixContactConstraints(World& world, double margin, const FixContactParams& p
       } while (n < limit && depthAfterTranslationAtLeast(box, stable, sat, 1.01 * step * k) > slop);
     }
   }
+  if (gathered) *gathered = std::move(contacts);
   return nudges;
 }
 
