@@ -13,13 +13,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <vector>
 
 #include "boxsim/collision/broad_phase.hpp"
 #include "boxsim/collision/contact_manifold.hpp"
 #include "boxsim/collision/kept_narrow_phase.hpp"
 #include "boxsim/collision/separating_axis.hpp"
+#include "boxsim/core/math.hpp"
 
 using namespace boxsim;
 
@@ -673,9 +673,9 @@ TEST_CASE("The contact area of a cube turned 45 degrees on another is an octagon
 namespace {
 /// Whether two separating-axis results are the same to the last bit in every field.
 bool sameResult(const SeparatingAxisResult& x, const SeparatingAxisResult& y) {
-  return x.intersecting == y.intersecting && std::memcmp(&x.depth, &y.depth, sizeof x.depth) == 0 &&
-         std::memcmp(x.normal.data(), y.normal.data(), 3 * sizeof(double)) == 0 &&
-         x.kind == y.kind && x.indexA == y.indexA && x.indexB == y.indexB;
+  return x.intersecting == y.intersecting && sameBits(x.depth, y.depth) &&
+         sameBits(x.normal, y.normal) && x.kind == y.kind && x.indexA == y.indexA &&
+         x.indexB == y.indexB;
 }
 }  // namespace
 
@@ -717,7 +717,7 @@ TEST_CASE("A kept narrow phase is the separating-axis test bit for bit, and runs
     const ContactManifold m = kept.collide(ia, c.a, ib, c.b, 0.01);
     const ContactManifold direct = collideBoxes(c.a, c.b, 0.01);
     REQUIRE(m.count == direct.count);
-    CHECK(std::memcmp(&m.depth, &direct.depth, sizeof m.depth) == 0);
+    CHECK(sameBits(m.depth, direct.depth));
     for (int k = 0; k < m.count; ++k) CHECK(m.points[k].position == direct.points[k].position);
     // One rounding of one coordinate of either box: the test runs again.
     Obb nudged = c.b;

@@ -44,10 +44,13 @@ SeparatingAxisResult KeptNarrowPhase::axis(int i, const Obb& a, int j, const Obb
     ++reuses_;
     return entry->result;
   }
-  if (entry == list.end()) entry = list.insert(list.end(), Entry{j, 0, 0, 0, {}});
-  *entry = Entry{j, step_ + 1, versionA, versionB, separatingAxisTest(a, b)};
+  const Entry ran{j, step_ + 1, versionA, versionB, separatingAxisTest(a, b)};
+  if (entry == list.end())
+    list.push_back(ran);
+  else
+    *entry = ran;
   ++tests_;
-  return entry->result;
+  return ran.result;
 }
 
 void KeptNarrowPhase::endStep() {

@@ -1,52 +1,32 @@
 /// \file
 /// A table of values by pair of body indices, for what a step keeps per pair (the friction
-/// sums of a step, the kept narrow phases): open addressing with linear probing over a flat
-/// array, values in the order they were first asked for. It keeps its memory when it is
-/// emptied or thinned, so a step that asks for about the pairs the last one did allocates
-/// nothing.
+/// sums of a step): open addressing with linear probing over a flat array, values in the order
+/// they were first asked for. It keeps its memory when it is emptied, so a step that asks for
+/// about the pairs the last one did allocates nothing.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
-#include <utility>
 #include <vector>
 
 namespace boxsim {
 
 /// Values of type T by ordered pair (i, j) of body indices (i, j >= 0). Lookups go by key
 /// only, so the table's layout never decides a result. References to values stay valid until
-/// the next insertion, retain() or clear().
+/// the next insertion or clear().
 template <class T>
 class PairTable {
  public:
-  /// The value of (i, j), default-constructed and inserted when absent; `inserted`, when
-  /// given, says which.
-  T& at(int i, int j, bool* inserted = nullptr) {
+  /// The value of (i, j), default-constructed and inserted when absent.
+  T& at(int i, int j) {
     if (2 * (keys_.size() + 1) > slots_.size()) rebuild(slots_.empty() ? 64 : 2 * slots_.size());
     const std::uint64_t key = keyOf(i, j);
     Slot& slot = slots_[slotOf(key)];
-    if (inserted) *inserted = slot.index == 0;
     if (slot.index != 0) return values_[slot.index - 1];
     keys_.push_back(key);
     values_.emplace_back();
     slot = Slot{key, static_cast<std::uint32_t>(keys_.size())};
     return values_.back();
-  }
-  /// Keeps only the values for which keep(value) is true, in their order.
-  template <class Keep>
-  void retain(Keep keep) {
-    std::size_t kept = 0;
-    for (std::size_t e = 0; e < values_.size(); ++e) {
-      if (!keep(values_[e])) continue;
-      if (kept != e) {
-        keys_[kept] = keys_[e];
-        values_[kept] = std::move(values_[e]);
-      }
-      ++kept;
-    }
-    keys_.resize(kept);
-    values_.resize(kept);
-    if (!slots_.empty()) rebuild(slots_.size());
   }
   /// Forgets every value.
   void clear() {

@@ -286,8 +286,8 @@ std::vector<ContactManifold> DampedIntegrationStepper::fixContacts(World& world,
   // tested again.
   KeptNarrowPhase& kept = gathering_.kept();
   if (!params_.fixContactConstraints)
-    return findContacts(world, restingMargin,
-                        havePairs ? pairs : candidatePairs(world, restingMargin), &kept);
+    return havePairs ? findContacts(world, restingMargin, pairs, &kept)
+                     : findContacts(world, restingMargin, candidatePairs(world, restingMargin), &kept);
   // Nudging moves x alone: the bodies it moved are those whose x changed.
   const std::size_t n = world.bodies.size();
   std::vector<Vec3> before(n);

@@ -26,7 +26,8 @@ int fixContactConstraints(World& world, double margin, const FixContactParams& p
                           KeptNarrowPhase* kept) {
   // FIXCONTACTCONSTRAINTS L1: sortContactPointsAscending.
   std::vector<ContactManifold> contacts =
-      findContacts(world, margin, pairs ? *pairs : candidatePairs(world, margin), kept);
+      pairs ? findContacts(world, margin, *pairs, kept)
+            : findContacts(world, margin, candidatePairs(world, margin), kept);
   // The order by height, as indices: the manifolds themselves stay in findContacts order for
   // `gathered`, and are not moved about by the sort.
   std::vector<std::tuple<double, int, int, std::size_t>> order(contacts.size());
