@@ -23,27 +23,36 @@ inline double cross2(const Vec2& o, const Vec2& a, const Vec2& b) {
   return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
 }
 
-/// Convex hull of xz points, counter-clockwise, collinear and repeated points dropped (Andrew's
-/// monotone chain after a lexicographic sort, so the hull is a function of the point set alone,
-/// not of its order). Fewer than 3 distinct points come back as they are (sorted): a hull
-/// without area.
-inline std::vector<Vec2> convexHullXZ(std::vector<Vec2> points) {
-  std::sort(points.begin(), points.end(), [](const Vec2& l, const Vec2& r) {
+/// Convex hull of the xz points [points, points + count), counter-clockwise, collinear and
+/// repeated points dropped (Andrew's monotone chain after a lexicographic sort, so the hull is a
+/// function of the point set alone, not of its order), written to `hull`, which has room for
+/// 2 count points; returns the hull's size. The points are sorted in place. Fewer than 3
+/// distinct points come back as they are (sorted): a hull without area. Allocates nothing.
+inline std::size_t convexHullXZ(Vec2* points, std::size_t count, Vec2* hull) {
+  std::sort(points, points + count, [](const Vec2& l, const Vec2& r) {
     return l.x() < r.x() || (l.x() == r.x() && l.y() < r.y());
   });
-  points.erase(std::unique(points.begin(), points.end()), points.end());
-  if (points.size() < 3) return points;
-  std::vector<Vec2> hull(2 * points.size());
-  std::size_t n = 0;
-  for (const Vec2& p : points) {
-    while (n >= 2 && cross2(hull[n - 2], hull[n - 1], p) <= 0.0) --n;
-    hull[n++] = p;
+  count = static_cast<std::size_t>(std::unique(points, points + count) - points);
+  if (count < 3) {
+    std::copy(points, points + count, hull);
+    return count;
   }
-  for (std::size_t k = points.size() - 1, lower = n + 1; k-- > 0;) {
+  std::size_t n = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    while (n >= 2 && cross2(hull[n - 2], hull[n - 1], points[k]) <= 0.0) --n;
+    hull[n++] = points[k];
+  }
+  for (std::size_t k = count - 1, lower = n + 1; k-- > 0;) {
     while (n >= lower && cross2(hull[n - 2], hull[n - 1], points[k]) <= 0.0) --n;
     hull[n++] = points[k];
   }
-  hull.resize(n - 1);  // the last point repeats the first
+  return n - 1;  // the last point repeats the first
+}
+
+/// convexHullXZ of a list of xz points: the hull, as above.
+inline std::vector<Vec2> convexHullXZ(std::vector<Vec2> points) {
+  std::vector<Vec2> hull(2 * points.size());
+  hull.resize(convexHullXZ(points.data(), points.size(), hull.data()));
   return hull;
 }
 

@@ -180,17 +180,18 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
     // The support test reads the contacts of the poses the step started from, which L1-L3 have
     // not moved: the last step's final contacts, or on a first step (or in a world moved or
     // changed since) a narrow phase of its own with the same margin.
-    std::vector<SupportVerdict> support;
+    static const std::vector<SupportVerdict> asWritten;
+    const std::vector<SupportVerdict>* support = &asWritten;
     if (params_.damping.supportTest) {
       const double restingMargin = restingContactMargin(world, margin, dt);
       if (!posesUnchanged(world, lastPoses_))
         lastContacts_ = findContacts(world, restingMargin, candidatePairs(world, restingMargin),
                                      &gathering_.kept());
-      support = centreOverSupport(world, lastContacts_,
-                                  {params_.sleep.supportNormalY, params_.damping.alignedAngleDeg,
-                                   restingMargin, margin});
+      support = &supportTest_(world, lastContacts_,
+                              {params_.sleep.supportNormalY, params_.damping.alignedAngleDeg,
+                               restingMargin, margin});
     }
-    dampenObjects(world, dt, touched, params_.damping, params_.impulse.integrator, support);
+    dampenObjects(world, dt, touched, params_.damping, params_.impulse.integrator, *support);
   } else {
     // DAMPENOBJECTS L22: without damping, its position update alone.
     predictPositions(world, dt, Vec3::Zero(), params_.impulse.integrator);

@@ -12,6 +12,7 @@
 
 #include "boxsim/core/stepper.hpp"
 #include "boxsim/geometric_stability/geometric_stability.hpp"
+#include "boxsim/impulse_damped/centre_over_support.hpp"
 #include "boxsim/impulse_damped/contact_gathering.hpp"
 #include "boxsim/impulse_damped/friction_totals.hpp"
 #include "boxsim/impulse_damped/continuous_collision.hpp"
@@ -166,6 +167,8 @@ class DampedIntegrationStepper final : public Stepper {
   // contacts found again.
   std::vector<ContactManifold> lastContacts_;
   std::vector<std::pair<Vec3, Quat>> lastPoses_;
+  /// The support test of DAMPENOBJECTS, its buffers kept from step to step.
+  SupportTest supportTest_;
   Sleeping sleeping_;
   DampedStepProfile* profile_ = nullptr;  ///< where stage times go, or none
 };
