@@ -122,14 +122,18 @@ void buildRows(FrictionRows& rows, const RigidBody& a, const RigidBody& b, const
   // W is symmetric positive definite (a pair's inverse mass restricted to independent rows).
   rows.llt.compute(W);
   rows.factorised = rows.llt.info() == Eigen::Success;
+  rows.normW = W.norm();
+  rows.tippingFactorised = false;
 }
 
 /// Coulomb (Goyal, Ruina and Papadopoulos' ellipse): when (J_t, τ / ρ) of `total` exceeds
 /// μs N (N in N s, ρ = radius in m, no spin term without torsion), scales it onto the ellipse
 /// of μd N and sets the couple to the one that stops the tipping under the friction so limited,
-/// from the sums `before` and the rows' velocities `slip` (m/s, rad/s) with inverse mass W.
-void limitByCoulomb(Vec5& total, const Vec5& before, const Vec5& slip, const Mat5& W,
+/// from the sums `before` and the rows' velocities `slip` (m/s, rad/s) with inverse mass
+/// W = rows.W (its tipping block is factorised into `rows` on first use).
+void limitByCoulomb(Vec5& total, const Vec5& before, const Vec5& slip, FrictionRows& rows,
                     const Friction& friction, double N, double radius, bool torsion) {
+  const Mat5& W = rows.W;
   // The norm as written, not the C library's three-argument hypot, which libraries round
   // differently (docs/web.md); impulses are far from overflow.
   const double spin = torsion ? total(2) / radius : 0.0;
@@ -138,7 +142,11 @@ void limitByCoulomb(Vec5& total, const Vec5& before, const Vec5& slip, const Mat
     total.head<3>() *= load > 0.0 ? friction.muDynamic * N / load : 0.0;
     // Sliding: the couple that stops the tipping under the friction as limited.
     const Eigen::Vector2d tip = slip.tail<2>() + W.block<2, 3>(3, 0) * (total.head<3>() - before.head<3>());
-    total.tail<2>() = before.tail<2>() - W.block<2, 2>(3, 3).llt().solve(tip);
+    if (!rows.tippingFactorised) {
+      rows.tippingLlt.compute(W.block<2, 2>(3, 3));
+      rows.tippingFactorised = true;
+    }
+    total.tail<2>() = before.tail<2>() - rows.tippingLlt.solve(tip);
   }
 }
 
@@ -200,12 +208,12 @@ void applyPatchFriction(RigidBody& a, RigidBody& b, const Vec3& ra, const Vec3& 
   if (!total.allFinite()) return;
   // Coulomb: (J_t, τ / ρ) within μs N, else on the ellipse of μd N.
   const double N = sum.normal;
-  limitByCoulomb(total, before, slip, W, friction, N, patch.radius, torsion);
+  limitByCoulomb(total, before, slip, rows, friction, N, patch.radius, torsion);
   // The couple: its centre of pressure p = n × couple / N within the patch.
   if (tipping) holdCoupleInPatch(total, patch, t1, t2, N);
   const Vec5 change = total - before;
   // The kinetic energy changes by Δ · slip + ½ Δᵀ W Δ: an increment that would raise it waits.
-  if (change.dot(slip) + 0.5 * change.dot(W * change) > 1e-12 * slip.squaredNorm() / W.norm()) return;
+  if (change.dot(slip) + 0.5 * change.dot(W * change) > 1e-12 * slip.squaredNorm() / rows.normW) return;
   applyRowImpulse(a, b, rows, change);
   sum.tangential = total(0) * t1 + total(1) * t2;
   sum.torsional = total(2);

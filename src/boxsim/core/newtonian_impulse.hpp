@@ -81,6 +81,11 @@ struct FrictionRows {
   Mat5 W = Mat5::Zero();             ///< the pair's inverse mass in the rows
   Eigen::LLT<Mat5> llt;              ///< W factorised
   bool factorised = false;           ///< llt succeeded
+  double normW = 0.0;                ///< W.norm(), the scale of the energy guard
+  /// The tipping rows' own block of W factorised (the couple that stops the tipping under
+  /// sliding friction), formed on first use.
+  Eigen::LLT<Eigen::Matrix2d> tippingLlt;
+  bool tippingFactorised = false;    ///< tippingLlt holds the block of the W above
 };
 
 /// What a contact has received so far in a step: the budget and the state of its friction.
