@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace boxsim {
@@ -27,6 +28,21 @@ class PairTable {
     values_.emplace_back();
     slot = Slot{key, static_cast<std::uint32_t>(keys_.size())};
     return values_.back();
+  }
+  /// The value of (i, j), or nullptr when absent; inserts nothing.
+  const T* find(int i, int j) const {
+    if (slots_.empty()) return nullptr;
+    const Slot& slot = slots_[slotOf(keyOf(i, j))];
+    return slot.index != 0 ? &values_[slot.index - 1] : nullptr;
+  }
+  /// Number of values.
+  std::size_t size() const { return keys_.size(); }
+  /// Exchanges the contents of two tables.
+  void swap(PairTable& other) noexcept {
+    keys_.swap(other.keys_);
+    values_.swap(other.values_);
+    slots_.swap(other.slots_);
+    std::swap(shift_, other.shift_);
   }
   /// Forgets every value.
   void clear() {

@@ -66,8 +66,7 @@ void ContactNormalTracker::remember(const World& world, const ContactManifold& m
   int axis = 0;
   for (int i = 1; i < 3; ++i)
     if (std::abs(R.col(i).dot(m.normal)) > std::abs(R.col(axis).dot(m.normal))) axis = i;
-  current_.push_back(PairFace{{m.a, m.b},
-                              FaceRef{onB, axis, R.col(axis).dot(m.normal) < 0.0 ? -1.0 : 1.0}, 0});
+  current_.at(m.a, m.b) = FaceRef{onB, axis, R.col(axis).dot(m.normal) < 0.0 ? -1.0 : 1.0};
 }
 
 ImpulseContact ContactNormalTracker::contactOf(const World& world, const ContactManifold& m,
@@ -102,14 +101,8 @@ ImpulseContact ContactNormalTracker::contactOf(const World& world, const Contact
       break;
     case ContactNormalModel::PreviousClosestFace: {
       if (record) remember(world, m);
-      const std::pair<int, int> key(m.a, m.b);
-      const auto previous = std::lower_bound(
-          previous_.begin(), previous_.end(), key,
-          [](const PairFace& e, const std::pair<int, int>& k) { return e.pair < k; });
-      if (previous != previous_.end() && previous->pair == key) {
-        const FaceRef& f = previous->face;
-        c.normal = f.sign * world.bodies[f.onB ? m.b : m.a].R.col(f.axis);
-      }
+      if (const FaceRef* f = previous_.find(m.a, m.b))
+        c.normal = f->sign * world.bodies[f->onB ? m.b : m.a].R.col(f->axis);
       break;
     }
   }
@@ -125,14 +118,6 @@ std::vector<ImpulseContact> ContactNormalTracker::contactsOf(
 }
 
 void ContactNormalTracker::endStep() {
-  // Sorted by pair, the latest record of a pair first, then one entry per pair.
-  for (std::size_t i = 0; i < current_.size(); ++i) current_[i].order = i;
-  std::sort(current_.begin(), current_.end(), [](const PairFace& l, const PairFace& r) {
-    return l.pair < r.pair || (l.pair == r.pair && l.order > r.order);
-  });
-  current_.erase(std::unique(current_.begin(), current_.end(),
-                             [](const PairFace& l, const PairFace& r) { return l.pair == r.pair; }),
-                 current_.end());
   previous_.swap(current_);
   current_.clear();
 }

@@ -10,6 +10,7 @@
 
 #include "boxsim/collision/contact.hpp"
 #include "boxsim/core/newtonian_impulse.hpp"
+#include "boxsim/core/pair_table.hpp"
 #include "boxsim/core/world.hpp"
 #include "boxsim/impulse_damped/impulse_params.hpp"
 
@@ -77,19 +78,12 @@ class ContactNormalTracker {
   };
   Vec3 signedDistanceNormal(const World& world, const ContactManifold& m) const;
 
-  /// A remembered face and the pair it belongs to.
-  struct PairFace {
-    std::pair<int, int> pair;  ///< (a, b)
-    FaceRef face;
-    std::size_t order = 0;     ///< when it was recorded in the step, for the latest-wins rule
-  };
-
   ContactNormalModel model_;
-  /// The previous step's faces, sorted by pair with one entry per pair, for binary search.
-  std::vector<PairFace> previous_;
-  /// The faces recorded in this step, in the order recorded; a pair recorded twice keeps the
-  /// later face, as a map assignment would (endStep sorts and deduplicates).
-  std::vector<PairFace> current_;
+  /// The previous step's faces by pair (a, b).
+  PairTable<FaceRef> previous_;
+  /// The faces recorded in this step by pair; a pair recorded twice keeps the later face, as a
+  /// map assignment would.
+  PairTable<FaceRef> current_;
 };
 
 }  // namespace boxsim
