@@ -2,9 +2,12 @@
 // convergence order), the Newtonian impulse and roll-back.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <map>
+#include <utility>
 
 #include "boxsim/core/integrator.hpp"
 #include "boxsim/core/newtonian_impulse.hpp"
+#include "boxsim/core/pair_table.hpp"
 #include "boxsim/core/world.hpp"
 
 using namespace boxsim;
@@ -225,4 +228,40 @@ TEST_CASE("Split rotation keeps the energy of a box tumbling about its intermedi
   // the step (0.25 within 25 % for the higher-order terms).
   CHECK(split60 < 0.05);
   CHECK(split120 / split60 == Approx(0.25).epsilon(0.25));
+}
+
+TEST_CASE("A pair table holds what a map by ordered pair holds, through growth, swaps and clears",
+          "[core][pair_table]") {
+  // The same operations on a PairTable and on std::map: 3000 random pairs of 200 bodies, values
+  // overwritten, (i, j) and (j, i) kept apart, then swapped with a second table and cleared.
+  PairTable<int> table, other;
+  std::map<std::pair<int, int>, int> reference;
+  unsigned state = 12345u;
+  const auto next = [&state] {
+    state = state * 1664525u + 1013904223u;
+    return static_cast<int>(state >> 8);
+  };
+  for (int k = 0; k < 3000; ++k) {
+    const int i = next() % 200, j = next() % 200;
+    table.at(i, j) = k;
+    reference[{i, j}] = k;
+  }
+  REQUIRE(table.size() == reference.size());
+  for (int i = 0; i < 200; ++i)
+    for (int j = 0; j < 200; ++j) {
+      const auto found = reference.find({i, j});
+      const int* value = table.find(i, j);
+      REQUIRE((value != nullptr) == (found != reference.end()));
+      if (value) CHECK(*value == found->second);
+    }
+  CHECK(other.find(0, 0) == nullptr);  // an empty table answers without a slot
+  other.at(7, 9) = 1;
+  table.swap(other);
+  CHECK(table.size() == 1);
+  CHECK(*table.find(7, 9) == 1);
+  CHECK(other.size() == reference.size());
+  for (const auto& [pair, value] : reference) CHECK(*other.find(pair.first, pair.second) == value);
+  other.clear();
+  CHECK(other.size() == 0);
+  for (const auto& [pair, value] : reference) CHECK(other.find(pair.first, pair.second) == nullptr);
 }
