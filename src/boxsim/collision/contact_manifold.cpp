@@ -48,6 +48,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace boxsim {
@@ -308,31 +309,47 @@ void storeFacePoints(const std::array<FacePoint, 8>& kept, int count, const Vec3
   }
 }
 
-/// Face contact: clip the incident face of one box against the reference face of the other.
-/// Fills the points, count and depth of `m`, whose other fields the caller has set; with `area`,
-/// fills that with every point before the reduction to four instead.
-void faceContact(const Obb& a, const Obb& b, const SeparatingAxisResult& sat, double margin,
-                 ContactManifold& m, std::vector<ContactPoint>* area = nullptr) {
+/// The clipped incident face of a face contact, before the margin picks its points.
+struct FaceClip {
+  std::array<ClipPolygon, 2> buffers;
+  const ClipPolygon* poly = nullptr;  ///< the clip polygon, in one of the buffers
+  Vec3 nRef;                          ///< the reference face's outward normal
+  Vec3 refCenter;                     ///< m, its centre
+  std::uint32_t faceBits = 0;         ///< the feature-id bits of the two faces
+  double tie = 0.0;                   ///< m, kDepthTieFraction of the reference face
+};
+
+/// Face contact, up to the margin: the incident face of one box clipped against the side planes
+/// of the reference face of the other. `clip` must not be copied after (poly points into it).
+void clipIncidentFace(const Obb& a, const Obb& b, const SeparatingAxisResult& sat, FaceClip& clip) {
   const FacePair faces = chooseFaces(a, b, sat);
   const Obb& ref = faces.refIsA ? a : b;
   const Obb& inc = faces.refIsA ? b : a;
   const int refFace = 2 * faces.refAxis + (faces.refPlus ? 1 : 0);
   const int incFace = 2 * faces.incAxis + (faces.incPlus ? 1 : 0);
 
-  std::array<ClipPolygon, 2> buffers;
-  incidentQuad(inc, faces.incAxis, faces.incPlus, buffers[0]);
-  const Vec3 refCenter = faceCentre(ref, faces.refAxis, faces.refPlus);
+  incidentQuad(inc, faces.incAxis, faces.incPlus, clip.buffers[0]);
+  clip.refCenter = faceCentre(ref, faces.refAxis, faces.refPlus);
+  clip.nRef = faces.nRef;
   // Rounding-sized distances from a side plane, and depths, count as ties (kDepthTieFraction).
-  const double tie = kDepthTieFraction * std::max(ref.halfExtents[(faces.refAxis + 1) % 3],
-                                                  ref.halfExtents[(faces.refAxis + 2) % 3]);
-  const ClipPolygon& poly = clipToSidePlanes(ref, faces.refAxis, refCenter, tie, buffers);
+  clip.tie = kDepthTieFraction * std::max(ref.halfExtents[(faces.refAxis + 1) % 3],
+                                          ref.halfExtents[(faces.refAxis + 2) % 3]);
+  clip.poly = &clipToSidePlanes(ref, faces.refAxis, clip.refCenter, clip.tie, clip.buffers);
+  clip.faceBits = (static_cast<std::uint32_t>(incFace) << 6) |
+                  (static_cast<std::uint32_t>(refFace) << 9) |
+                  ((faces.refIsA ? 0u : 1u) << 12);
+}
 
+/// Face contact: clip the incident face of one box against the reference face of the other.
+/// Fills the points, count and depth of `m`, whose other fields the caller has set; with `area`,
+/// fills that with every point before the reduction to four instead.
+void faceContact(const Obb& a, const Obb& b, const SeparatingAxisResult& sat, double margin,
+                 ContactManifold& m, std::vector<ContactPoint>* area = nullptr) {
+  FaceClip clip;
+  clipIncidentFace(a, b, sat, clip);
   // Keep the points below the reference face, placed midway between the two surfaces.
-  const std::uint32_t faceBits = (static_cast<std::uint32_t>(incFace) << 6) |
-                                 (static_cast<std::uint32_t>(refFace) << 9) |
-                                 ((faces.refIsA ? 0u : 1u) << 12);
   std::array<FacePoint, 8> kept;
-  const int count = pointsBelow(poly, faces.nRef, refCenter, margin, faceBits, kept);
+  const int count = pointsBelow(*clip.poly, clip.nRef, clip.refCenter, margin, clip.faceBits, kept);
 
   if (area) {
     // The whole contact area (§3.2), before the reduction to four.
@@ -340,7 +357,7 @@ void faceContact(const Obb& a, const Obb& b, const SeparatingAxisResult& sat, do
     for (int k = 0; k < count; ++k) area->push_back({kept[k].position, kept[k].depth, kept[k].featureId});
     return;
   }
-  storeFacePoints(kept, count, faces.nRef, tie, m);
+  storeFacePoints(kept, count, clip.nRef, clip.tie, m);
 }
 
 /// The edge of `box` along axis d farthest along direction n (its support edge), as centre
@@ -403,6 +420,50 @@ ContactManifold buildContactManifold(const Obb& a, const Obb& b, const Separatin
     edgeContact(a, b, sat, m);
   else
     faceContact(a, b, sat, margin, m);
+  return m;
+}
+
+ClippedContact clipContact(const Obb& a, const Obb& b, const SeparatingAxisResult& sat) {
+  ClippedContact c;
+  c.sat = sat;
+  if (sat.kind == AxisKind::EdgeEdge) {
+    ContactManifold m;
+    edgeContact(a, b, sat, m);
+    c.count = 1;
+    c.points[0] = m.points[0];
+    return c;
+  }
+  FaceClip clip;
+  clipIncidentFace(a, b, sat, clip);
+  // Every vertex of the clip polygon: no margin drops one (a depth is never <= -infinity).
+  std::array<FacePoint, 8> all;
+  c.count = pointsBelow(*clip.poly, clip.nRef, clip.refCenter,
+                        std::numeric_limits<double>::infinity(), clip.faceBits, all);
+  for (int k = 0; k < c.count; ++k) c.points[k] = {all[k].position, all[k].depth, all[k].featureId};
+  c.referenceNormal = clip.nRef;
+  c.tie = clip.tie;
+  return c;
+}
+
+ContactManifold manifoldWithin(const ClippedContact& clip, double margin) {
+  ContactManifold m;
+  m.normal = clip.sat.normal;
+  m.kind = clip.sat.kind;
+  m.depth = clip.sat.depth;
+  if (clip.sat.depth <= -margin) return m;
+  if (clip.sat.kind == AxisKind::EdgeEdge) {
+    m.points[0] = clip.points[0];
+    m.count = 1;
+    return m;  // depth: sat.depth, as edgeContact sets it
+  }
+  // pointsBelow's choice, from the depths it computed for every vertex.
+  std::array<FacePoint, 8> kept;
+  int count = 0;
+  for (int k = 0; k < clip.count; ++k) {
+    if (clip.points[k].depth <= -margin) continue;
+    kept[count++] = {clip.points[k].position, clip.points[k].depth, clip.points[k].featureId};
+  }
+  storeFacePoints(kept, count, clip.referenceNormal, clip.tie, m);
   return m;
 }
 

@@ -39,6 +39,27 @@ ContactManifold buildContactManifold(const Obb& a, const Obb& b, const Separatin
 std::vector<ContactPoint> contactArea(const Obb& a, const Obb& b, const SeparatingAxisResult& sat,
                                       double margin = 0.0);
 
+/// What a manifold is made of before the margin picks its points: the separating axis and,
+/// for a face contact, every vertex of the incident face clipped to the reference face (up to
+/// 8, in the clip polygon's order) with its depth, its position midway between the surfaces
+/// and its feature id; for an edge-edge contact its one point. The clipping does not depend on
+/// the margin, so one clip serves every margin a step asks for (KeptNarrowPhase: the resting
+/// margin of FIXCONTACTCONSTRAINTS, the widened one of the once-per-step gathering).
+struct ClippedContact {
+  SeparatingAxisResult sat;             ///< the test the clip was made for
+  int count = 0;                        ///< points; 0 to 8
+  std::array<ContactPoint, 8> points{};  ///< the first `count`
+  Vec3 referenceNormal = Vec3::Zero();  ///< unit, the reference face's outward normal (face)
+  double tie = 0.0;                     ///< m, depths this close count as equal (reduction)
+};
+
+/// The clip of boxes A and B for `sat` = separatingAxisTest(a, b) (ClippedContact).
+ClippedContact clipContact(const Obb& a, const Obb& b, const SeparatingAxisResult& sat);
+
+/// The manifold of a clip for `margin` (m, >= 0): buildContactManifold(a, b, clip.sat, margin)
+/// of the boxes the clip was made of, bit for bit (tested: collision_test.cpp, "[clip]").
+ContactManifold manifoldWithin(const ClippedContact& clip, double margin);
+
 /// separatingAxisTest followed by buildContactManifold: the narrow phase for one pair.
 ContactManifold collideBoxes(const Obb& a, const Obb& b, double margin = 0.0,
                              const SeparatingAxisParams& params = {});

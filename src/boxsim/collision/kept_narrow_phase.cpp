@@ -22,6 +22,7 @@ long KeptNarrowPhase::versionOf(int body, const Obb& box) {
   if (k >= seen_.size()) {
     seen_.resize(k + 1);
     kept_.resize(k + 1);
+    clipsOf_.resize(k + 1);
   }
   Seen& seen = seen_[k];
   if (seen.version == 0 || !sameBox(seen.box, box)) {
@@ -31,36 +32,72 @@ long KeptNarrowPhase::versionOf(int body, const Obb& box) {
   return seen.version;
 }
 
+std::vector<KeptNarrowPhase::Entry>::iterator KeptNarrowPhase::entry(int i, const Obb& a, int j,
+                                                                     const Obb& b) {
+  const long versionA = versionOf(i, a), versionB = versionOf(j, b);
+  std::vector<Entry>& list = kept_[static_cast<std::size_t>(i)];
+  auto found = std::find_if(list.begin(), list.end(), [j](const Entry& e) { return e.j == j; });
+  if (found != list.end() && found->versionA == versionA && found->versionB == versionB) {
+    found->step = step_ + 1;
+    ++reuses_;
+    return found;
+  }
+  const Entry ran{j, step_ + 1, versionA, versionB, separatingAxisTest(a, b), false};
+  ++tests_;
+  if (found != list.end()) {
+    *found = ran;
+    return found;
+  }
+  list.push_back(ran);
+  clipsOf_[static_cast<std::size_t>(i)].emplace_back();
+  return list.end() - 1;
+}
+
 SeparatingAxisResult KeptNarrowPhase::axis(int i, const Obb& a, int j, const Obb& b) {
   if (!keep_) {
     ++tests_;
     return separatingAxisTest(a, b);
   }
-  const long versionA = versionOf(i, a), versionB = versionOf(j, b);
-  std::vector<Entry>& list = kept_[static_cast<std::size_t>(i)];
-  auto entry = std::find_if(list.begin(), list.end(), [j](const Entry& e) { return e.j == j; });
-  if (entry != list.end() && entry->versionA == versionA && entry->versionB == versionB) {
-    entry->step = step_ + 1;
-    ++reuses_;
-    return entry->result;
+  return entry(i, a, j, b)->result;
+}
+
+ContactManifold KeptNarrowPhase::collide(int i, const Obb& a, int j, const Obb& b, double margin) {
+  if (!keep_) {
+    ++tests_;
+    return buildContactManifold(a, b, separatingAxisTest(a, b), margin);
   }
-  const Entry ran{j, step_ + 1, versionA, versionB, separatingAxisTest(a, b)};
-  if (entry == list.end())
-    list.push_back(ran);
-  else
-    *entry = ran;
-  ++tests_;
-  return ran.result;
+  const auto e = entry(i, a, j, b);
+  // Nothing within the margin: buildContactManifold clips nothing either.
+  if (e->result.depth <= -margin) return buildContactManifold(a, b, e->result, margin);
+  std::vector<Entry>& list = kept_[static_cast<std::size_t>(i)];
+  ClippedContact& clip = clipsOf_[static_cast<std::size_t>(i)][static_cast<std::size_t>(e - list.begin())];
+  if (!e->clipped) {
+    clip = clipContact(a, b, e->result);
+    e->clipped = true;
+    ++clips_;
+  }
+  return manifoldWithin(clip, margin);
 }
 
 void KeptNarrowPhase::endStep() {
   ++step_;
   // An entry holds the step after the one it was last asked for in: keep those asked for in
-  // the step that ends.
-  for (std::vector<Entry>& list : kept_)
-    list.erase(std::remove_if(list.begin(), list.end(),
-                              [this](const Entry& e) { return e.step < step_; }),
-               list.end());
+  // the step that ends, with their clips.
+  for (std::size_t i = 0; i < kept_.size(); ++i) {
+    std::vector<Entry>& list = kept_[i];
+    std::vector<ClippedContact>& clips = clipsOf_[i];
+    std::size_t to = 0;
+    for (std::size_t from = 0; from < list.size(); ++from) {
+      if (list[from].step < step_) continue;
+      if (to != from) {
+        list[to] = list[from];
+        if (list[to].clipped) clips[to] = clips[from];
+      }
+      ++to;
+    }
+    list.resize(to);
+    clips.resize(to);
+  }
 }
 
 }  // namespace boxsim

@@ -45,10 +45,10 @@ class KeptNarrowPhase {
   /// test run now and kept.
   SeparatingAxisResult axis(int i, const Obb& a, int j, const Obb& b);
   /// collideBoxes(a, b, margin) with the test taken from axis(i, a, j, b); m, margin >= 0.
+  /// The clip of the incident face is kept with the test (ClippedContact: it does not depend on
+  /// the margin), so the pair's manifold for another margin at the same poses costs no clipping.
   /// Fields a and b of the manifold are left at -1, as collideBoxes leaves them.
-  ContactManifold collide(int i, const Obb& a, int j, const Obb& b, double margin) {
-    return buildContactManifold(a, b, axis(i, a, j, b), margin);
-  }
+  ContactManifold collide(int i, const Obb& a, int j, const Obb& b, double margin);
   /// Ends a step: pairs not asked for in the step that ends are forgotten, so the store holds
   /// the pairs that are near now, not every pair that ever was.
   void endStep();
@@ -57,6 +57,9 @@ class KeptNarrowPhase {
   long tests() const { return tests_; }
   /// Tests handed back from the store since construction.
   long reuses() const { return reuses_; }
+  /// Clips (clipContact) made since construction; the other manifolds of collide() came from a
+  /// kept clip or had no points within their margin.
+  long clips() const { return clips_; }
 
  private:
   /// What the store last saw of a body: its box, and a number that changes whenever the box
@@ -72,7 +75,10 @@ class KeptNarrowPhase {
     long versionA;  ///< body i's version when it ran
     long versionB;  ///< body j's version when it ran
     SeparatingAxisResult result;
+    bool clipped;   ///< its clip, at the same place in clips_'s list, is the test's
   };
+  /// Body i's entry for (i, j) with the test of boxes a and b, run now unless kept.
+  std::vector<Entry>::iterator entry(int i, const Obb& a, int j, const Obb& b);
   /// Body `body`'s version for `box`: the one it had if the box is bitwise the last seen, else
   /// a new one.
   long versionOf(int body, const Obb& box);
@@ -81,12 +87,16 @@ class KeptNarrowPhase {
   /// A step asks for a body's pairs together (pairs come sorted by body), so a lookup reads one
   /// short list that is already in the cache, where a table by pair would read a random slot.
   std::vector<std::vector<Entry>> kept_;
+  /// Per body i, the clips of its entries, place for place (apart: a lookup reads the entries
+  /// alone, and a clip is ten times an entry).
+  std::vector<std::vector<ClippedContact>> clipsOf_;
   std::vector<Seen> seen_;  ///< per body
   long versions_ = 0;       ///< the last version handed out
   bool keep_;
   long step_ = 0;
   long tests_ = 0;
   long reuses_ = 0;
+  long clips_ = 0;
 };
 
 }  // namespace boxsim
