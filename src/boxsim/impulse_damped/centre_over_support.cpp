@@ -19,8 +19,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 #include "boxsim/collision/xz_hull.hpp"
+#include "boxsim/core/math.hpp"
 
 namespace boxsim {
 namespace {
@@ -29,11 +31,12 @@ using Polygon = SupportTest::Polygon;
 using LevelFace = SupportTest::LevelFace;
 
 /// The face of `body` whose outward normal points up (`up` true) or down; an empty outline
-/// unless one of the body's axes lies within `alignedAngleDeg` of y.
-LevelFace levelFace(const RigidBody& body, bool up, double alignedAngleDeg) {
+/// unless one of the body's axes lies within the aligned angle of y, whose cosine is
+/// `alignedCosine`.
+LevelFace levelFace(const RigidBody& body, bool up, double alignedCosine) {
   LevelFace face;
   const HorizontalFace h = horizontalFace(body, up);
-  if (h.verticality < std::cos(alignedAngleDeg * kPi / 180.0)) return face;
+  if (h.verticality < alignedCosine) return face;
   face.normal = h.normal;
   face.centre = h.centre;
   std::array<Vec2, 4> corners = h.corners;
@@ -49,12 +52,16 @@ LevelFace levelFace(const RigidBody& body, bool up, double alignedAngleDeg) {
 /// one point.
 template <class F>
 Polygon clipHalfPlane(const Polygon& polygon, const F& f) {
+  // f at every vertex, once (each vertex starts one edge and ends another).
+  std::array<double, std::tuple_size_v<decltype(polygon.points)>> values;
+  for (std::size_t k = 0; k < polygon.count; ++k) values[k] = f(polygon.points[k]);
   Polygon kept;
   for (std::size_t k = 0; k < polygon.count; ++k) {
+    const std::size_t next = k + 1 == polygon.count ? 0 : k + 1;
     const Vec2& p = polygon.points[k];
-    const Vec2& q = polygon.points[(k + 1) % polygon.count];
-    const double fp = f(p);
-    const double fq = f(q);
+    const Vec2& q = polygon.points[next];
+    const double fp = values[k];
+    const double fq = values[next];
     if (fp >= 0.0) kept.points[kept.count++] = p;
     if ((fp >= 0.0) != (fq >= 0.0)) kept.points[kept.count++] = p + (fp / (fp - fq)) * (q - p);
   }
@@ -103,20 +110,88 @@ bool overHull(Vec2* points, std::size_t count, Vec2* hull, const Vec2& c, double
   return (a + t * (b - a) - c).norm() <= tolerance;
 }
 
+/// Whether two manifolds are the same pair with the same normal and points, bit for bit: all
+/// the support test reads of a manifold.
+bool sameManifold(const ContactManifold& x, const ContactManifold& y) {
+  if (x.a != y.a || x.b != y.b || x.count != y.count || !sameBits(x.normal, y.normal)) return false;
+  for (int k = 0; k < x.count; ++k)
+    if (!sameBits(x.points[k].position, y.points[k].position)) return false;
+  return true;
+}
+
+/// Whether two sets of parameters are the same, bit for bit.
+bool sameParams(const SupportTestParams& x, const SupportTestParams& y) {
+  return sameBits(x.supportNormalY, y.supportNormalY) &&
+         sameBits(x.alignedAngleDeg, y.alignedAngleDeg) &&
+         sameBits(x.contactBand, y.contactBand) && sameBits(x.levelTolerance, y.levelTolerance);
+}
+
 }  // namespace
+
+void SupportTest::markChanged(const World& world, const std::vector<ContactManifold>& contacts,
+                              const SupportTestParams& params) {
+  const std::size_t n = world.bodies.size();
+  // Everything is new: another world size, other parameters, or the first call.
+  const bool all = !asked_ || n != poses_.size() || !sameParams(params, params_);
+  asked_ = true;
+  params_ = params;
+  poses_.resize(n);
+  changed_.assign(n, 0);
+  moved_.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const RigidBody& body = world.bodies[i];
+    Pose& pose = poses_[i];
+    if (all || !sameBits(pose.x, body.s.x) || !sameBits(pose.R, body.R) ||
+        !sameBits(pose.halfExtents, body.halfExtents) || pose.immovable != body.immovable) {
+      moved_[i] = changed_[i] = 1;
+      pose = Pose{body.s.x, body.R, body.halfExtents, body.immovable};
+    }
+  }
+  // A body's verdict reads its manifolds and the poses of the bodies they touch: a manifold
+  // not bitwise the last call's of its pair, or a partner that moved, changes it; so does a
+  // manifold that is gone (the count of its manifolds differs).
+  touching_.assign(n, 0);
+  for (const ContactManifold& m : contacts) {
+    if (m.count == 0) continue;
+    const std::size_t a = static_cast<std::size_t>(m.a), b = static_cast<std::size_t>(m.b);
+    ++touching_[a];
+    ++touching_[b];
+    const int* last = lastOfPair_.find(m.a, m.b);
+    if (!last || !sameManifold(last_[static_cast<std::size_t>(*last)], m) || moved_[a] || moved_[b])
+      changed_[a] = changed_[b] = 1;
+  }
+  lastTouching_.resize(n, 0);
+  for (std::size_t i = 0; i < n; ++i)
+    if (touching_[i] != lastTouching_[i]) changed_[i] = 1;
+  // This call's manifolds are the next call's last ones.
+  last_.clear();
+  lastOfPair_.clear();
+  for (const ContactManifold& m : contacts) {
+    if (m.count == 0) continue;
+    // A pair listed twice: its bodies are asked anew (the lookup above saw one of the two).
+    if (lastOfPair_.find(m.a, m.b))
+      changed_[static_cast<std::size_t>(m.a)] = changed_[static_cast<std::size_t>(m.b)] = 1;
+    lastOfPair_.at(m.a, m.b) = static_cast<int>(last_.size());
+    last_.push_back(m);
+  }
+  lastTouching_.swap(touching_);
+}
 
 const std::vector<SupportVerdict>& SupportTest::operator()(
     const World& world, const std::vector<ContactManifold>& contacts,
     const SupportTestParams& params) {
   const std::size_t n = world.bodies.size();
+  // Only the bodies whose verdict may differ from the last call's are asked again.
+  markChanged(world, contacts, params);
   // A body's level faces, once, and only those a contact asks for: a body meets several
   // others, and a sleeping one (immovable for the step) needs no lower face.
   faces_.resize(2 * n);
   found_.assign(2 * n, 0);
+  const double alignedCosine = std::cos(params.alignedAngleDeg * kPi / 180.0);
   const auto faceOf = [&](int body, bool up) -> const LevelFace& {
     const std::size_t k = 2 * static_cast<std::size_t>(body) + (up ? 1 : 0);
     if (!found_[k]) {
-      faces_[k] = levelFace(world.bodies[static_cast<std::size_t>(body)], up, params.alignedAngleDeg);
+      faces_[k] = levelFace(world.bodies[static_cast<std::size_t>(body)], up, alignedCosine);
       found_[k] = 1;
     }
     return faces_[k];
@@ -131,7 +206,7 @@ const std::vector<SupportVerdict>& SupportTest::operator()(
   for (const ContactManifold& m : contacts) {
     if (m.count == 0) continue;
     for (const int upper : {m.a, m.b}) {
-      if (world.bodies[upper].immovable) continue;
+      if (world.bodies[upper].immovable || !changed_[static_cast<std::size_t>(upper)]) continue;
       const int lower = upper == m.b ? m.a : m.b;
       // A face down on a face up: where the two faces touch, whatever axis the narrow phase took
       // for the pair (a side face's, when a corner of one lies near the rim of the other).
@@ -176,8 +251,10 @@ const std::vector<SupportVerdict>& SupportTest::operator()(
     next[0] = 0;
   }
   constexpr double kTolerance = 1e-9;  // m: rounding, and a centre exactly over an edge
-  verdicts_.assign(n, SupportVerdict{});
+  verdicts_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
+    if (!changed_[i]) continue;  // the last call's verdict stands
+    verdicts_[i] = SupportVerdict{};
     const std::size_t count = start_[i + 1] - start_[i];
     if (count == 0) continue;
     const Vec2 c(world.bodies[i].s.x.x(), world.bodies[i].s.x.z());

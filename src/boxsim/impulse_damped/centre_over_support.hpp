@@ -4,6 +4,7 @@
 /// form of geometric stability's support hull (\thesis{§5.4}).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <utility>
@@ -11,6 +12,7 @@
 
 #include "boxsim/collision/contact.hpp"
 #include "boxsim/collision/xz_hull.hpp"
+#include "boxsim/core/pair_table.hpp"
 #include "boxsim/core/world.hpp"
 
 namespace boxsim {
@@ -71,14 +73,21 @@ std::vector<SupportVerdict> centreOverSupport(const World& world,
 
 /// centreOverSupport with its working memory kept from call to call, so that a stepper that
 /// asks every step allocates nothing once the buffers have grown to the scene (a step of a
-/// 343-box heap otherwise made some 11 000 small allocations here). The same verdicts, bit for
-/// bit, as the function.
+/// 343-box heap otherwise made some 11 000 small allocations here), and incremental: a body's
+/// verdict is a function of its pose, its manifolds and the poses of the bodies they touch, so
+/// it is worked out again only when one of those differs bitwise from the last call's (a body
+/// the damping holds still, and its supports, keep theirs: \alg{DAMPENOBJECTS L23-L28}). The
+/// same verdicts, bit for bit, as the function (tested against it, whatever was asked before).
 class SupportTest {
  public:
   /// centreOverSupport(world, contacts, params); the reference stays valid until the next call.
   const std::vector<SupportVerdict>& operator()(const World& world,
                                                 const std::vector<ContactManifold>& contacts,
                                                 const SupportTestParams& params = {});
+  /// Bodies whose verdict the last call worked out anew; the others kept the call before's.
+  std::size_t reworked() const {
+    return static_cast<std::size_t>(std::count(changed_.begin(), changed_.end(), 1));
+  }
 
   /// A convex polygon of the xz plane with room for what clipping a box's face makes: a face's
   /// 4 corners, and one more for each of the 6 half planes it may be cut by.
@@ -99,6 +108,25 @@ class SupportTest {
   };
 
  private:
+  /// What a body's verdict reads of the body itself.
+  struct Pose {
+    Vec3 x = Vec3::Zero();
+    Mat3 R = Mat3::Identity();
+    Vec3 halfExtents = Vec3::Zero();
+    bool immovable = false;
+  };
+  /// Sets changed_: the bodies whose verdict must be worked out again in this call.
+  void markChanged(const World& world, const std::vector<ContactManifold>& contacts,
+                   const SupportTestParams& params);
+
+  bool asked_ = false;             ///< a call was made (the fields below hold it)
+  SupportTestParams params_;       ///< the last call's
+  std::vector<Pose> poses_;        ///< per body, at the last call
+  std::vector<ContactManifold> last_;  ///< the last call's manifolds with points
+  PairTable<int> lastOfPair_;      ///< (a, b) -> index into last_
+  std::vector<int> touching_, lastTouching_;  ///< per body: manifolds with points, now and last
+  std::vector<char> moved_;        ///< per body: its pose differs from the last call's
+  std::vector<char> changed_;      ///< per body: its verdict is worked out in this call
   std::vector<LevelFace> faces_;  ///< per body, 2 i + up: its level faces, when found_
   std::vector<char> found_;
   std::vector<std::pair<int, Vec2>> points_;  ///< support points, tagged with their body
