@@ -93,7 +93,7 @@ class SupportTest {
   /// 4 corners, and one more for each of the 6 half planes it may be cut by.
   struct Polygon {
     std::array<Vec2, 12> points{};  ///< m, the first `count`, counter-clockwise
-    std::size_t count = 0;
+    std::size_t count = 0;          ///< vertices; 0 to 12
   };
   /// A face of a box whose outward normal lies within the aligned angle of +y or −y.
   struct LevelFace {
