@@ -677,6 +677,21 @@ bool sameResult(const SeparatingAxisResult& x, const SeparatingAxisResult& y) {
          sameBits(x.normal, y.normal) && x.kind == y.kind && x.indexA == y.indexA &&
          x.indexB == y.indexB;
 }
+
+/// configurations(), a cube resting on a ground slab, `extra`, and `count` random pairs of
+/// boxes (seeded), overlapping or not.
+std::vector<Config> manyConfigurations(const std::vector<Config>& extra, unsigned seed, int count) {
+  std::vector<Config> configs = configurations();
+  const Obb ground{Vec3(0, -0.5, 0), Mat3::Identity(), Vec3(20, 0.5, 20)};
+  configs.push_back({"cube on the ground", ground, cube(Vec3(0.3, 0.5, -2.0))});
+  configs.insert(configs.end(), extra.begin(), extra.end());
+  testing::SeededRandom random(seed);
+  for (int trial = 0; trial < count; ++trial)
+    configs.push_back({"random",
+                       Obb{random.vector(-0.8, 0.8), random.rotation().toRotationMatrix(), random.vector(0.2, 1.0)},
+                       Obb{random.vector(-0.8, 0.8), random.rotation().toRotationMatrix(), random.vector(0.2, 1.0)}});
+  return configs;
+}
 }  // namespace
 
 TEST_CASE("A kept narrow phase is the separating-axis test bit for bit, and runs again once a "
@@ -684,19 +699,12 @@ TEST_CASE("A kept narrow phase is the separating-axis test bit for bit, and runs
           "[collision][kept]") {
   // The standard configurations, boxes resting flush (on a ground slab, on an equal cube, side
   // by side: the ties of the face rule), apart, and 400 random pairs overlapping or not.
-  std::vector<Config> configs = configurations();
-  const Obb ground{Vec3(0, -0.5, 0), Mat3::Identity(), Vec3(20, 0.5, 20)};
-  configs.push_back({"cube on the ground", ground, cube(Vec3(0.3, 0.5, -2.0))});
-  configs.push_back({"cube on a cube", cube(Vec3::Zero()), cube(Vec3(0.2, 1.0, 0.1))});
-  configs.push_back({"side by side", cube(Vec3::Zero()), cube(Vec3(1.0, 0.0, 0.0))});
-  configs.push_back({"turned on a cube", cube(Vec3::Zero()),
-                     cube(Vec3(0, 0.99, 0), rotation(kPi / 4, Vec3::UnitY()))});
-  configs.push_back({"apart", cube(Vec3::Zero()), cube(Vec3(0.3, 1.2, 0.0), rotation(0.4, Vec3(1, 1, 0)))});
-  testing::SeededRandom random(11);
-  for (int trial = 0; trial < 400; ++trial)
-    configs.push_back({"random",
-                       Obb{random.vector(-0.8, 0.8), random.rotation().toRotationMatrix(), random.vector(0.2, 1.0)},
-                       Obb{random.vector(-0.8, 0.8), random.rotation().toRotationMatrix(), random.vector(0.2, 1.0)}});
+  const std::vector<Config> configs = manyConfigurations(
+      {{"cube on a cube", cube(Vec3::Zero()), cube(Vec3(0.2, 1.0, 0.1))},
+       {"side by side", cube(Vec3::Zero()), cube(Vec3(1.0, 0.0, 0.0))},
+       {"turned on a cube", cube(Vec3::Zero()), cube(Vec3(0, 0.99, 0), rotation(kPi / 4, Vec3::UnitY()))},
+       {"apart", cube(Vec3::Zero()), cube(Vec3(0.3, 1.2, 0.0), rotation(0.4, Vec3(1, 1, 0)))}},
+      11, 400);
   KeptNarrowPhase kept;
   int i = 0;
   for (const Config& c : configs) {
@@ -765,18 +773,11 @@ TEST_CASE("One clip of a pair gives its manifold for every margin, bit for bit, 
           "[collision][clip][kept]") {
   // The standard configurations, boxes resting flush or sunk, tilted, edge on edge, apart, and
   // 400 random pairs; margins from 0 to beyond any depth here, so points drop out one by one.
-  std::vector<Config> configs = configurations();
-  const Obb ground{Vec3(0, -0.5, 0), Mat3::Identity(), Vec3(20, 0.5, 20)};
-  configs.push_back({"cube on the ground", ground, cube(Vec3(0.3, 0.5, -2.0))});
-  configs.push_back({"tilted on a cube", cube(Vec3::Zero()),
-                     cube(Vec3(0.1, 0.999, 0.0), rotation(0.05, Vec3(1, 0, 1)))});
-  configs.push_back({"on an edge", cube(Vec3::Zero()),
-                     cube(Vec3(0, 0.5 + 0.5 * std::sqrt(2.0) - 0.001, 0), rotation(kPi / 4, Vec3::UnitX()))});
-  testing::SeededRandom random(37);
-  for (int trial = 0; trial < 400; ++trial)
-    configs.push_back({"random",
-                       Obb{random.vector(-0.8, 0.8), random.rotation().toRotationMatrix(), random.vector(0.2, 1.0)},
-                       Obb{random.vector(-0.8, 0.8), random.rotation().toRotationMatrix(), random.vector(0.2, 1.0)}});
+  const std::vector<Config> configs = manyConfigurations(
+      {{"tilted on a cube", cube(Vec3::Zero()), cube(Vec3(0.1, 0.999, 0.0), rotation(0.05, Vec3(1, 0, 1)))},
+       {"on an edge", cube(Vec3::Zero()),
+        cube(Vec3(0, 0.5 + 0.5 * std::sqrt(2.0) - 0.001, 0), rotation(kPi / 4, Vec3::UnitX()))}},
+      37, 400);
   const std::vector<double> margins{0.0, 1e-6, 1e-3, 3.2e-3, 0.01, 0.025, 0.1, 0.5, 2.0, 10.0};
   KeptNarrowPhase kept;
   int face = 0, edge = 0, partial = 0;
