@@ -39,11 +39,9 @@ LevelFace levelFace(const RigidBody& body, bool up, double alignedCosine) {
   if (h.verticality < alignedCosine) return face;
   face.normal = h.normal;
   face.centre = h.centre;
+  // The hull of the 4 corners straight into the outline, which has room for 2 × 4 points.
   std::array<Vec2, 4> corners = h.corners;
-  std::array<Vec2, 8> hull;
-  face.outline.count = convexHullXZ(corners.data(), corners.size(), hull.data());
-  std::copy(hull.begin(), hull.begin() + static_cast<std::ptrdiff_t>(face.outline.count),
-            face.outline.points.begin());
+  face.outline.count = convexHullXZ(corners.data(), corners.size(), face.outline.points.data());
   return face;
 }
 
