@@ -341,22 +341,14 @@ void clipIncidentFace(const Obb& a, const Obb& b, const SeparatingAxisResult& sa
 }
 
 /// Face contact: clip the incident face of one box against the reference face of the other.
-/// Fills the points, count and depth of `m`, whose other fields the caller has set; with `area`,
-/// fills that with every point before the reduction to four instead.
+/// Fills the points, count and depth of `m`, whose other fields the caller has set.
 void faceContact(const Obb& a, const Obb& b, const SeparatingAxisResult& sat, double margin,
-                 ContactManifold& m, std::vector<ContactPoint>* area = nullptr) {
+                 ContactManifold& m) {
   FaceClip clip;
   clipIncidentFace(a, b, sat, clip);
   // Keep the points below the reference face, placed midway between the two surfaces.
   std::array<FacePoint, 8> kept;
   const int count = pointsBelow(*clip.poly, clip.nRef, clip.refCenter, margin, clip.faceBits, kept);
-
-  if (area) {
-    // The whole contact area (§3.2), before the reduction to four.
-    area->clear();
-    for (int k = 0; k < count; ++k) area->push_back({kept[k].position, kept[k].depth, kept[k].featureId});
-    return;
-  }
   storeFacePoints(kept, count, clip.nRef, clip.tie, m);
 }
 
@@ -469,11 +461,14 @@ ContactManifold manifoldWithin(const ClippedContact& clip, double margin) {
 
 std::vector<ContactPoint> contactArea(const Obb& a, const Obb& b, const SeparatingAxisResult& sat,
                                       double margin) {
-  ContactManifold m = buildContactManifold(a, b, sat, margin);
-  if (sat.depth <= -margin || sat.kind == AxisKind::EdgeEdge)
-    return std::vector<ContactPoint>(m.points.begin(), m.points.begin() + m.count);
+  // The whole contact area (§3.2): the clip's points within the margin, before the reduction
+  // to four (manifoldWithin's choice of points, without it).
   std::vector<ContactPoint> area;
-  faceContact(a, b, sat, margin, m, &area);
+  if (sat.depth <= -margin) return area;
+  const ClippedContact clip = clipContact(a, b, sat);
+  for (int k = 0; k < clip.count; ++k)
+    if (sat.kind == AxisKind::EdgeEdge || !(clip.points[k].depth <= -margin))
+      area.push_back(clip.points[k]);
   return area;
 }
 
