@@ -65,6 +65,12 @@ std::vector<std::pair<int, int>> candidatePairs(const World& world, const std::v
   return allPairs(world, lo, hi, margin);
 }
 
+void candidatePairs(const World& world, const std::vector<Vec3>& lo, const std::vector<Vec3>& hi,
+                    double margin, SweepAndPrune& sweep, std::vector<std::pair<int, int>>& pairs) {
+  if (world.broadPhase == BroadPhase::SweepAndPrune) return sweep.pairs(world, lo, hi, margin, pairs);
+  pairs = candidatePairs(world, lo, hi, margin);
+}
+
 namespace {
 /// collideBoxes for bodies i and j where they stand, through `kept` when there is one.
 ContactManifold narrowPhase(const World& world, int i, int j, double margin,
@@ -81,10 +87,17 @@ std::vector<ContactManifold> findContacts(const World& world, double margin) {
 std::vector<ContactManifold> findContacts(const World& world, double margin,
                                           const std::vector<std::pair<int, int>>& pairs,
                                           KeptNarrowPhase* kept) {
+  std::vector<ContactManifold> contacts;
+  findContacts(world, margin, pairs, kept, contacts);
+  return contacts;
+}
+
+void findContacts(const World& world, double margin, const std::vector<std::pair<int, int>>& pairs,
+                  KeptNarrowPhase* kept, std::vector<ContactManifold>& contacts) {
   // Room for every candidate at once: in the scenes that make this costly, stacks at rest,
   // nearly every candidate touches, and growing the vector step by step would copy each
   // manifold several times.
-  std::vector<ContactManifold> contacts;
+  contacts.clear();
   contacts.reserve(pairs.size());
   for (const auto& [i, j] : pairs) {
     ContactManifold m = narrowPhase(world, i, j, margin, kept);
@@ -93,7 +106,6 @@ std::vector<ContactManifold> findContacts(const World& world, double margin,
     m.b = j;
     contacts.push_back(m);
   }
-  return contacts;
 }
 
 bool pairIntersects(const World& world, int i, int j, double tolerance) {
@@ -115,16 +127,17 @@ namespace {
 /// instead of running the whole broad phase (a sweep costs about as much as this many).
 constexpr std::size_t kMaxDirectlyRefound = 64;
 
-/// The pairs of candidatePairs(world, margin) with a moved body, in the same order: each moved
-/// body tested against every other by the broad phases' own test on the same bounds.
-std::vector<std::pair<int, int>> movedPairs(const World& world, double margin,
-                                            const std::vector<char>& moved,
-                                            const std::vector<int>& movedBodies) {
+/// The pairs of candidatePairs(world, margin) with a moved body, in the same order, into
+/// lists.pairs: each moved body tested against every other by the broad phases' own test on the
+/// bounds in lists.lo and lists.hi.
+void movedPairs(const World& world, double margin, const std::vector<char>& moved,
+                BroadPhaseLists& lists) {
   const int n = static_cast<int>(world.bodies.size());
-  std::vector<Vec3> lo(n), hi(n);
-  for (int i = 0; i < n; ++i) obbBounds(Obb::of(world.bodies[i]), 0.0, lo[i], hi[i]);
-  std::vector<std::pair<int, int>> pairs;
-  for (int i : movedBodies)
+  const std::vector<Vec3>& lo = lists.lo;
+  const std::vector<Vec3>& hi = lists.hi;
+  std::vector<std::pair<int, int>>& pairs = lists.pairs;
+  pairs.clear();
+  for (int i : lists.movedBodies)
     for (int j = 0; j < n; ++j) {
       // A pair of two moved bodies once, from its lower index.
       if (j == i || (moved[j] && j < i)) continue;
@@ -133,7 +146,6 @@ std::vector<std::pair<int, int>> movedPairs(const World& world, double margin,
         pairs.emplace_back(std::min(i, j), std::max(i, j));
     }
   std::sort(pairs.begin(), pairs.end());
-  return pairs;
 }
 }  // namespace
 
@@ -141,9 +153,18 @@ std::vector<ContactManifold> refindContacts(const World& world, double margin,
                                             const std::vector<ContactManifold>& before,
                                             const std::vector<char>& moved,
                                             KeptNarrowPhase* kept) {
+  BroadPhaseLists lists;
+  std::vector<ContactManifold> contacts;
+  refindContacts(world, margin, before, moved, kept, lists, contacts);
+  return contacts;
+}
+
+void refindContacts(const World& world, double margin, const std::vector<ContactManifold>& before,
+                    const std::vector<char>& moved, KeptNarrowPhase* kept, BroadPhaseLists& lists,
+                    std::vector<ContactManifold>& contacts) {
   if (moved.size() != world.bodies.size())
     throw std::invalid_argument("refindContacts: give one moved flag per body");
-  std::vector<ContactManifold> contacts;
+  contacts.clear();
   contacts.reserve(before.size());
   std::size_t k = 0;
   // Both lists in increasing (a, b) order: merge the kept manifolds with the new ones.
@@ -151,15 +172,21 @@ std::vector<ContactManifold> refindContacts(const World& world, double margin,
     for (; k < before.size() && std::make_pair(before[k].a, before[k].b) < until; ++k)
       if (!moved[before[k].a] && !moved[before[k].b]) contacts.push_back(before[k]);
   };
-  std::vector<int> movedBodies;
+  lists.movedBodies.clear();
   for (std::size_t i = 0; i < moved.size(); ++i)
-    if (moved[i]) movedBodies.push_back(static_cast<int>(i));
+    if (moved[i]) lists.movedBodies.push_back(static_cast<int>(i));
   // Only the pairs with a moved body are looked at: with few moved bodies, finding just those
   // is cheaper than the whole broad phase, and gives the same pairs in the same order.
-  const std::vector<std::pair<int, int>> pairs = movedBodies.size() <= kMaxDirectlyRefound
-                                                     ? movedPairs(world, margin, moved, movedBodies)
-                                                     : candidatePairs(world, margin);
-  for (const auto& [i, j] : pairs) {
+  const std::size_t n = world.bodies.size();
+  lists.lo.resize(n);
+  lists.hi.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    obbBounds(Obb::of(world.bodies[i]), 0.0, lists.lo[i], lists.hi[i]);
+  if (lists.movedBodies.size() <= kMaxDirectlyRefound)
+    movedPairs(world, margin, moved, lists);
+  else
+    candidatePairs(world, lists.lo, lists.hi, margin, lists.sweep, lists.pairs);
+  for (const auto& [i, j] : lists.pairs) {
     if (!moved[i] && !moved[j]) continue;
     keepBefore({i, j});
     ContactManifold m = narrowPhase(world, i, j, margin, kept);
@@ -169,7 +196,6 @@ std::vector<ContactManifold> refindContacts(const World& world, double margin,
     contacts.push_back(m);
   }
   keepBefore({static_cast<int>(world.bodies.size()), 0});
-  return contacts;
 }
 
 double deepestPenetration(const World& world) {

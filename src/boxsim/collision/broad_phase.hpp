@@ -13,6 +13,7 @@
 
 #include "boxsim/collision/contact.hpp"
 #include "boxsim/collision/kept_narrow_phase.hpp"
+#include "boxsim/collision/sweep_and_prune.hpp"
 #include "boxsim/core/enum_names.hpp"
 #include "boxsim/core/world.hpp"
 
@@ -64,6 +65,12 @@ std::vector<std::pair<int, int>> candidatePairs(const World& world, double margi
 std::vector<std::pair<int, int>> candidatePairs(const World& world, const std::vector<Vec3>& lo,
                                                 const std::vector<Vec3>& hi, double margin);
 
+/// candidatePairs(world, lo, hi, margin) into `pairs` (written over), the sweep's working lists
+/// kept in `sweep` from call to call: once they have grown to the scene, nothing is allocated.
+/// \throws std::invalid_argument unless lo and hi hold one entry per body
+void candidatePairs(const World& world, const std::vector<Vec3>& lo, const std::vector<Vec3>& hi,
+                    double margin, SweepAndPrune& sweep, std::vector<std::pair<int, int>>& pairs);
+
 /// Every pair of bodies whose manifold has at least one point (depth > -margin, m), with a and
 /// b filled in, in increasing (a, b) order: collideBoxes on each of candidatePairs(world,
 /// margin). The result does not depend on world.broadPhase. \thesis{§3.2}
@@ -77,6 +84,10 @@ std::vector<ContactManifold> findContacts(const World& world, double margin = 0.
 std::vector<ContactManifold> findContacts(const World& world, double margin,
                                           const std::vector<std::pair<int, int>>& pairs,
                                           KeptNarrowPhase* kept = nullptr);
+
+/// findContacts(world, margin, pairs, kept) into `contacts` (written over; its room kept).
+void findContacts(const World& world, double margin, const std::vector<std::pair<int, int>>& pairs,
+                  KeptNarrowPhase* kept, std::vector<ContactManifold>& contacts);
 
 /// findContacts(world, margin) after only some bodies moved: `before` is what findContacts
 /// returned with the same margin when every body stood where it stands now except those with
@@ -93,6 +104,22 @@ std::vector<ContactManifold> refindContacts(const World& world, double margin,
                                             const std::vector<ContactManifold>& before,
                                             const std::vector<char>& moved,
                                             KeptNarrowPhase* kept = nullptr);
+
+/// The working lists of refindContacts, kept by a caller that asks every step: once they have
+/// grown to the scene, a call allocates nothing.
+struct BroadPhaseLists {
+  SweepAndPrune sweep;                     ///< the sweep's own lists
+  std::vector<Vec3> lo, hi;                ///< per body, its bounds, m
+  std::vector<std::pair<int, int>> pairs;  ///< the pairs found
+  std::vector<int> movedBodies;            ///< the bodies flagged moved
+};
+
+/// refindContacts(world, margin, before, moved, kept) into `contacts` (written over; not
+/// `before`), with the working lists in `lists`.
+/// \throws std::invalid_argument unless moved has one entry per body
+void refindContacts(const World& world, double margin, const std::vector<ContactManifold>& before,
+                    const std::vector<char>& moved, KeptNarrowPhase* kept, BroadPhaseLists& lists,
+                    std::vector<ContactManifold>& contacts);
 
 /// The deepest overlap of any pair of bodies (separating-axis depth), m; 0 when none overlaps.
 /// Pairs come from candidatePairs(world), so from world.broadPhase; the result does not depend

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 
 #include "boxsim/collision/broad_phase.hpp"
@@ -59,10 +60,12 @@ int axisOfLargestSpread(const World& world, const std::vector<int>& bodies) {
 
 /// Puts pairs (i, j) with 0 <= i, j < n into increasing (i, j) order in O(n + k) for k pairs:
 /// a stable counting sort by j, then one by i (least significant key first).
-void sortPairs(std::vector<std::pair<int, int>>& pairs, int n) {
-  std::vector<std::pair<int, int>> sorted(pairs.size());
+/// `sorted` and `start` are working lists.
+void sortPairs(std::vector<std::pair<int, int>>& pairs, int n,
+               std::vector<std::pair<int, int>>& sorted, std::vector<std::size_t>& start) {
+  sorted.resize(pairs.size());
   const auto countingSortBy = [&](int std::pair<int, int>::*key) {
-    std::vector<std::size_t> start(static_cast<std::size_t>(n) + 1, 0);
+    start.assign(static_cast<std::size_t>(n) + 1, 0);
     for (const std::pair<int, int>& p : pairs) ++start[p.*key + 1];
     for (int v = 0; v < n; ++v) start[v + 1] += start[v];
     for (const std::pair<int, int>& p : pairs) sorted[start[p.*key]++] = p;
@@ -91,13 +94,14 @@ void testDirect(const World& world, const std::vector<Vec3>& lo, const std::vect
 }
 
 /// Sort and sweep over the `swept` bodies along the axis on which their centres spread most.
+/// `intervals`, `sortedLo` and `sortedHi` are working lists.
 void sweepPairs(const World& world, const std::vector<Vec3>& lo, const std::vector<Vec3>& hi,
                 const std::vector<int>& swept, double margin,
-                std::vector<std::pair<int, int>>& pairs) {
+                std::vector<std::pair<int, int>>& pairs, std::vector<Interval>& intervals,
+                std::vector<Vec3>& sortedLo, std::vector<Vec3>& sortedHi) {
   if (swept.empty()) return;
   const int axis = axisOfLargestSpread(world, swept);
-  std::vector<Interval> intervals;
-  intervals.reserve(swept.size());
+  intervals.clear();
   for (int i : swept) intervals.push_back(Interval{lo[i][axis], hi[i][axis], i});
   // Ties broken by body index make the order total, so std::sort (not stable) sweeps the
   // same way on every run and every standard library. The result would not change without
@@ -110,7 +114,8 @@ void sweepPairs(const World& world, const std::vector<Vec3>& lo, const std::vect
   // The bounds in sweep order, so the inner loop reads memory in sequence instead of
   // jumping to each body's bounds by index.
   const std::size_t m = intervals.size();
-  std::vector<Vec3> sortedLo(m), sortedHi(m);
+  sortedLo.resize(m);
+  sortedHi.resize(m);
   for (std::size_t p = 0; p < m; ++p) {
     sortedLo[p] = lo[intervals[p].body];
     sortedHi[p] = hi[intervals[p].body];
@@ -142,6 +147,11 @@ struct Grid {
   std::vector<int> start;  ///< bodies of cell c are order[start[c], start[c + 1])
   std::vector<int> order;  ///< gridded bodies by cell, by body index within a cell
   std::vector<int> cell;   ///< the cell of each body of `order`
+  // Working lists of buildGrid and gridPairs, kept for their room.
+  std::vector<double> extent, sortedExtent;  ///< per swept body: its largest bounds extent, m
+  std::vector<int> gridded, cellOf, next;    ///< the gridded bodies, their cells, fill cursors
+  std::vector<Vec3> sortedLo, sortedHi;      ///< the bounds in `order`, m
+  std::vector<char> sortedImmovable, movableIn;  ///< per body of `order`; per cell
 };
 
 /// Builds the grid over `swept`, or returns false when a grid would not pay (the cells would
@@ -151,14 +161,16 @@ struct Grid {
 bool buildGrid(const std::vector<Vec3>& lo, const std::vector<Vec3>& hi,
                const std::vector<int>& swept, double margin, std::vector<int>& direct,
                std::vector<char>& isDirect, Grid& grid) {
-  std::vector<double> extent(swept.size());
+  std::vector<double>& extent = grid.extent;
+  extent.resize(swept.size());
   for (std::size_t k = 0; k < swept.size(); ++k)
     extent[k] = (hi[swept[k]] - lo[swept[k]]).maxCoeff();
-  std::vector<double> sorted = extent;
+  std::vector<double>& sorted = grid.sortedExtent;
+  sorted.assign(extent.begin(), extent.end());
   std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(sorted.size() / 2), sorted.end());
   const double median = sorted[sorted.size() / 2];
-  std::vector<int> gridded;
-  gridded.reserve(swept.size());
+  std::vector<int>& gridded = grid.gridded;
+  gridded.clear();
   double largest = 0.0;
   Vec3 lowest = Vec3::Constant(std::numeric_limits<double>::infinity());
   Vec3 highest = -lowest;
@@ -189,7 +201,8 @@ bool buildGrid(const std::vector<Vec3>& lo, const std::vector<Vec3>& hi,
       isDirect[swept[k]] = 1;
     }
   // Counting sort of the bodies by cell; bodies keep their index order within a cell.
-  std::vector<int> cellOf(gridded.size());
+  std::vector<int>& cellOf = grid.cellOf;
+  cellOf.resize(gridded.size());
   grid.start.assign(static_cast<std::size_t>(cells) + 1, 0);
   for (std::size_t g = 0; g < gridded.size(); ++g) {
     const Vec3 c = ((lo[gridded[g]] - grid.origin) / grid.h).array().floor();
@@ -200,7 +213,8 @@ bool buildGrid(const std::vector<Vec3>& lo, const std::vector<Vec3>& hi,
   for (std::size_t c = 1; c < grid.start.size(); ++c) grid.start[c] += grid.start[c - 1];
   grid.order.resize(gridded.size());
   grid.cell.resize(gridded.size());
-  std::vector<int> next(grid.start.begin(), grid.start.end() - 1);
+  std::vector<int>& next = grid.next;
+  next.assign(grid.start.begin(), grid.start.end() - 1);
   for (std::size_t g = 0; g < gridded.size(); ++g) {
     const int at = next[cellOf[g]]++;
     grid.order[at] = gridded[g];
@@ -214,10 +228,14 @@ bool buildGrid(const std::vector<Vec3>& lo, const std::vector<Vec3>& hi,
 /// is visited once. The bounds are copied into cell order first, so the scans read memory in
 /// sequence; only the occupied cells are visited.
 void gridPairs(const World& world, const std::vector<Vec3>& lo, const std::vector<Vec3>& hi,
-               const Grid& grid, double margin, std::vector<std::pair<int, int>>& pairs) {
+               Grid& grid, double margin, std::vector<std::pair<int, int>>& pairs) {
   const std::size_t m = grid.order.size();
-  std::vector<Vec3> sortedLo(m), sortedHi(m);
-  std::vector<char> sortedImmovable(m);
+  std::vector<Vec3>& sortedLo = grid.sortedLo;
+  std::vector<Vec3>& sortedHi = grid.sortedHi;
+  std::vector<char>& sortedImmovable = grid.sortedImmovable;
+  sortedLo.resize(m);
+  sortedHi.resize(m);
+  sortedImmovable.resize(m);
   for (std::size_t p = 0; p < m; ++p) {
     const int body = grid.order[p];
     sortedLo[p] = lo[body];
@@ -233,7 +251,8 @@ void gridPairs(const World& world, const std::vector<Vec3>& lo, const std::vecto
   };
   // Cells holding a movable body: two cells of immovable bodies alone (sleepers of a settled
   // pile, §4.5) pair nothing, and are not looked into.
-  std::vector<char> movableIn(grid.start.size(), 0);
+  std::vector<char>& movableIn = grid.movableIn;
+  movableIn.assign(grid.start.size(), 0);
   for (std::size_t p = 0; p < m; ++p)
     if (!sortedImmovable[p]) movableIn[static_cast<std::size_t>(grid.cell[p])] = 1;
   const Eigen::Vector3i& d = grid.dims;
@@ -274,9 +293,36 @@ std::vector<std::pair<int, int>> sweepAndPrunePairs(const World& world, double m
 std::vector<std::pair<int, int>> sweepAndPrunePairs(const World& world,
                                                     const std::vector<Vec3>& lo,
                                                     const std::vector<Vec3>& hi, double margin) {
+  SweepAndPrune sweep;
+  std::vector<std::pair<int, int>> pairs;
+  sweep.pairs(world, lo, hi, margin, pairs);
+  return pairs;
+}
+
+struct SweepAndPrune::Lists {
+  std::vector<int> direct, swept;
+  std::vector<char> isDirect;
+  std::vector<Interval> intervals;
+  std::vector<Vec3> sortedLo, sortedHi;
+  Grid grid;
+  std::vector<std::pair<int, int>> sortedPairs;
+  std::vector<std::size_t> start;
+};
+
+SweepAndPrune::SweepAndPrune() : lists_(std::make_unique<Lists>()) {}
+SweepAndPrune::~SweepAndPrune() = default;
+SweepAndPrune::SweepAndPrune(SweepAndPrune&&) noexcept = default;
+SweepAndPrune& SweepAndPrune::operator=(SweepAndPrune&&) noexcept = default;
+SweepAndPrune::SweepAndPrune(const SweepAndPrune&) : SweepAndPrune() {}
+SweepAndPrune& SweepAndPrune::operator=(const SweepAndPrune&) { return *this; }
+
+void SweepAndPrune::pairs(const World& world, const std::vector<Vec3>& lo,
+                          const std::vector<Vec3>& hi, double margin,
+                          std::vector<std::pair<int, int>>& pairs) {
   const int n = static_cast<int>(world.bodies.size());
   if (lo.size() != world.bodies.size() || hi.size() != world.bodies.size())
     throw std::invalid_argument("sweepAndPrunePairs: give one pair of bounds per body");
+  Lists& w = *lists_;
 
   // A ground as wide as the scene, swept, would overlap every interval along the sweep axis and
   // make the sweep quadratic: immovable bodies much larger than every movable one are tested
@@ -287,29 +333,28 @@ std::vector<std::pair<int, int>> sweepAndPrunePairs(const World& world,
   double largestMovable = 0.0;
   for (const RigidBody& b : world.bodies)
     if (!b.immovable) largestMovable = std::max(largestMovable, b.halfExtents.maxCoeff());
-  std::vector<int> direct, swept;
-  swept.reserve(n);
-  std::vector<char> isDirect(n, 0);
+  w.direct.clear();
+  w.swept.clear();
+  w.isDirect.assign(static_cast<std::size_t>(n), 0);
   for (int i = 0; i < n; ++i) {
     const RigidBody& b = world.bodies[i];
     const bool huge = b.immovable && !(b.halfExtents.maxCoeff() <= kSweptSizeRatio * largestMovable);
-    isDirect[i] = huge || !lo[i].allFinite() || !hi[i].allFinite();
-    (isDirect[i] ? direct : swept).push_back(i);
+    w.isDirect[i] = huge || !lo[i].allFinite() || !hi[i].allFinite();
+    (w.isDirect[i] ? w.direct : w.swept).push_back(i);
   }
 
   // Bodies resting in a stack touch a handful of neighbours each, so 4 n pairs is usually
   // room enough for all of them from the start (it is only a starting capacity).
-  std::vector<std::pair<int, int>> pairs;
+  pairs.clear();
   pairs.reserve(4 * static_cast<std::size_t>(n));
-  Grid grid;
-  if (swept.size() >= kGridMinBodies && buildGrid(lo, hi, swept, margin, direct, isDirect, grid))
-    gridPairs(world, lo, hi, grid, margin, pairs);
+  if (w.swept.size() >= kGridMinBodies &&
+      buildGrid(lo, hi, w.swept, margin, w.direct, w.isDirect, w.grid))
+    gridPairs(world, lo, hi, w.grid, margin, pairs);
   else
-    sweepPairs(world, lo, hi, swept, margin, pairs);
+    sweepPairs(world, lo, hi, w.swept, margin, pairs, w.intervals, w.sortedLo, w.sortedHi);
   // After the grid: it may have moved outsized bodies to the directly tested ones.
-  testDirect(world, lo, hi, direct, isDirect, margin, pairs);
-  sortPairs(pairs, n);
-  return pairs;
+  testDirect(world, lo, hi, w.direct, w.isDirect, margin, pairs);
+  sortPairs(pairs, n, w.sortedPairs, w.start);
 }
 
 }  // namespace boxsim

@@ -6,6 +6,7 @@
 /// all of similar size. It returns exactly the pairs of the all-pairs test, in the same order.
 #pragma once
 
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -60,5 +61,26 @@ std::vector<std::pair<int, int>> sweepAndPrunePairs(const World& world, double m
 std::vector<std::pair<int, int>> sweepAndPrunePairs(const World& world,
                                                     const std::vector<Vec3>& lo,
                                                     const std::vector<Vec3>& hi, double margin);
+
+/// sweepAndPrunePairs with its working lists (the sort, the grid, the pairs' reordering) kept
+/// from call to call: a caller that asks every step allocates nothing once the lists have
+/// grown to the scene. A copy starts with empty lists of its own.
+class SweepAndPrune {
+ public:
+  SweepAndPrune();
+  ~SweepAndPrune();
+  SweepAndPrune(SweepAndPrune&&) noexcept;             ///< takes the lists
+  SweepAndPrune& operator=(SweepAndPrune&&) noexcept;  ///< takes the lists
+  SweepAndPrune(const SweepAndPrune&);                 ///< empty lists of its own
+  SweepAndPrune& operator=(const SweepAndPrune&);      ///< keeps its own lists
+  /// `pairs` = sweepAndPrunePairs(world, lo, hi, margin), written over what it held.
+  /// \throws std::invalid_argument unless lo and hi hold one entry per body
+  void pairs(const World& world, const std::vector<Vec3>& lo, const std::vector<Vec3>& hi,
+             double margin, std::vector<std::pair<int, int>>& pairs);
+
+ private:
+  struct Lists;                   ///< the working lists (sweep_and_prune.cpp)
+  std::unique_ptr<Lists> lists_;
+};
 
 }  // namespace boxsim

@@ -22,13 +22,9 @@
 namespace boxsim {
 namespace {
 
-/// The bottom face of a box: what "the bottom plane of the box" (\thesis{§5.4}) means for a box
-/// of any orientation.
-struct BottomFace {
-  bool level = false;            ///< its outward normal is along −y within normalTolerance
-  std::array<Vec2, 4> corners{};  ///< xz projections, numbered as in the header's diagram
-  double tolerance = 0.0;        ///< m: how near a point must be to a corner to mark it
-};
+using BottomFace = GeometricStability::BottomFace;
+using BodyMarks = GeometricStability::BodyMarks;
+using VerticalContact = GeometricStability::VerticalContact;
 
 /// The face of `body` whose outward normal points most nearly down.
 BottomFace bottomFaceOf(const RigidBody& body, const GeometricStabilityParams& params) {
@@ -46,23 +42,13 @@ bool alongY(const Vec3& n, const GeometricStabilityParams& params) {
   return 1.0 - std::abs(n.y()) <= params.normalTolerance;
 }
 
-/// One point of a manifold whose normal is along y, as A.2 sees a contact: a point with a
-/// top and a bottom body.
-struct VerticalContact {
-  double height = 0.0;  ///< y of the point, m
-  int bottom = -1;      ///< body index
-  int top = -1;         ///< body index
-  int manifold = -1;    ///< index into the contacts
-  int point = -1;       ///< index into the manifold's points
-  Vec2 xz = Vec2::Zero();  ///< the point projected to the xz plane, m
-};
-
 /// SETGEOMETRICALLYSTABLE L6: the points of the vertical contacts, lowest first; equal heights in
 /// order of the bottom body, the top body, then the input order, so the order is a function of the
 /// input alone. The verdict does not depend on that tie order (see the sweep).
-std::vector<VerticalContact> sortContactPointsAscending(
-    const std::vector<ContactManifold>& contacts, const GeometricStabilityParams& params) {
-  std::vector<VerticalContact> sorted;
+void sortContactPointsAscending(const std::vector<ContactManifold>& contacts,
+                                const GeometricStabilityParams& params,
+                                std::vector<VerticalContact>& sorted) {
+  sorted.clear();
   for (int m = 0; m < static_cast<int>(contacts.size()); ++m) {
     const ContactManifold& c = contacts[m];
     if (!alongY(c.normal, params)) continue;
@@ -78,32 +64,27 @@ std::vector<VerticalContact> sortContactPointsAscending(
   };
   std::sort(sorted.begin(), sorted.end(),
             [&](const VerticalContact& l, const VerticalContact& r) { return key(l) < key(r); });
-  return sorted;
 }
 
 /// True when every corner of `face` lies in the convex hull of `support`, or within
 /// face.tolerance outside it. A hull of fewer than 3 points has no area and covers nothing.
-bool hullCoversFace(const std::vector<Vec2>& support, const BottomFace& face) {
-  const std::vector<Vec2> hull = convexHullXZ(support);
-  if (hull.size() < 3) return false;
+/// `points` and `hull` are working lists.
+bool hullCoversFace(const std::vector<Vec2>& support, const BottomFace& face,
+                    std::vector<Vec2>& points, std::vector<Vec2>& hull) {
+  points.assign(support.begin(), support.end());
+  hull.resize(2 * points.size());
+  const std::size_t size = convexHullXZ(points.data(), points.size(), hull.data());
+  if (size < 3) return false;
   for (const Vec2& q : face.corners) {
-    for (std::size_t i = 0; i < hull.size(); ++i) {
+    for (std::size_t i = 0; i < size; ++i) {
       const Vec2& p0 = hull[i];
-      const Vec2& p1 = hull[(i + 1) % hull.size()];
+      const Vec2& p1 = hull[(i + 1) % size];
       // Signed distance of q to the left of the edge p0 -> p1 (inside is to the left).
       if (cross2(p0, p1, q) < -face.tolerance * (p1 - p0).norm()) return false;
     }
   }
   return true;
 }
-
-/// What the sweep knows of one body besides its flag.
-struct BodyMarks {
-  /// Bottom-face corners marked so far (SETGEOMETRICALLYSTABLE L15).
-  std::array<bool, 4> corners{};
-  std::vector<Vec2> support;      ///< footnote rule: xz points of contacts with stable bodies
-  bool ruledOut = false;          ///< some contact disqualified it for good
-};
 
 void checkInput(const World& world, const std::vector<ContactManifold>& contacts,
                 const GeometricStabilityParams& params) {
@@ -143,16 +124,32 @@ GeometricStabilityMode parseGeometricStabilityMode(const std::string& name) {
 std::vector<char> setGeometricallyStable(const World& world,
                                          const std::vector<ContactManifold>& contacts,
                                          const GeometricStabilityParams& params) {
+  GeometricStability test;
+  return test(world, contacts, params);
+}
+
+const std::vector<char>& GeometricStability::operator()(
+    const World& world, const std::vector<ContactManifold>& contacts,
+    const GeometricStabilityParams& params) {
   checkInput(world, contacts, params);
   const int n = static_cast<int>(world.bodies.size());
 
   // SETGEOMETRICALLYSTABLE L1-L5: bodies of infinite mass are stable, every other body starts out
   // unstable.
-  std::vector<char> stable(n, 0);
+  std::vector<char>& stable = stable_;
+  stable.resize(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) stable[i] = world.bodies[i].immovable ? 1 : 0;
 
-  std::vector<BodyMarks> marks(n);
-  std::vector<BottomFace> bottom(n);
+  // The lists of the last call, emptied: each keeps the room it had.
+  std::vector<BodyMarks>& marks = marks_;
+  marks.resize(static_cast<std::size_t>(n));
+  for (BodyMarks& m : marks) {
+    m.corners = {};
+    m.support.clear();
+    m.ruledOut = false;
+  }
+  std::vector<BottomFace>& bottom = bottom_;
+  bottom.resize(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) bottom[i] = bottomFaceOf(world.bodies[i], params);
 
   // SETGEOMETRICALLYSTABLE L19-L20: contacts whose normal is off the y axis.
@@ -171,7 +168,8 @@ std::vector<char> setGeometricallyStable(const World& world,
 
   // SETGEOMETRICALLYSTABLE L6: lowest contact points first, so a bottom body is judged before its
   // top body.
-  const std::vector<VerticalContact> sorted = sortContactPointsAscending(contacts, params);
+  sortContactPointsAscending(contacts, params, sorted_);
+  const std::vector<VerticalContact>& sorted = sorted_;
 
   // SETGEOMETRICALLYSTABLE L7-L8: each contact point in turn.
   for (const VerticalContact& c : sorted) {
@@ -194,13 +192,13 @@ std::vector<char> setGeometricallyStable(const World& world,
       for (int k = 0; k < 4; ++k)
         if ((c.xz - bottom[o].corners[k]).norm() <= bottom[o].tolerance)
           marks[o].corners[k] = true;
-      marks[o].support.push_back(c.xz);
+      if (params.useSupportHull) marks[o].support.push_back(c.xz);
 
       // SETGEOMETRICALLYSTABLE L16-L17: all four corners marked (or, as the footnote's ablation,
       // the support hull covers the bottom face) and nothing has ruled the body out.
       const bool supported =
           params.useSupportHull
-              ? hullCoversFace(marks[o].support, bottom[o])
+              ? hullCoversFace(marks[o].support, bottom[o], hullPoints_, hull_)
               : std::all_of(marks[o].corners.begin(), marks[o].corners.end(),
                             [](bool marked) { return marked; });
       // DEVIATION(SETGEOMETRICALLYSTABLE L17): a body ruled out earlier stays out; otherwise a

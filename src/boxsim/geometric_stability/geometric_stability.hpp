@@ -21,10 +21,12 @@
 /// \endverbatim
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
 #include "boxsim/collision/contact.hpp"
+#include "boxsim/collision/xz_hull.hpp"
 #include "boxsim/core/world.hpp"
 #include "boxsim/geometric_stability/load_stability.hpp"
 
@@ -94,5 +96,47 @@ GeometricStabilityMode parseGeometricStabilityMode(const std::string& name);
 std::vector<char> setGeometricallyStable(const World& world,
                                          const std::vector<ContactManifold>& contacts,
                                          const GeometricStabilityParams& params = {});
+
+/// setGeometricallyStable with its working lists kept from call to call, for a stepper that
+/// asks every step: once its lists have grown to the world's size, a call allocates nothing
+/// (with params.underLoad, addStableUnderLoad still does). The same flags as the free function.
+class GeometricStability {
+ public:
+  /// setGeometricallyStable(world, contacts, params); the flags stay valid until the next call.
+  const std::vector<char>& operator()(const World& world,
+                                      const std::vector<ContactManifold>& contacts,
+                                      const GeometricStabilityParams& params = {});
+
+  /// What the sweep knows of one body besides its flag.
+  struct BodyMarks {
+    std::array<bool, 4> corners{};  ///< bottom-face corners marked so far (L15)
+    std::vector<Vec2> support;      ///< footnote rule: xz points of contacts with stable bodies
+    bool ruledOut = false;          ///< some contact disqualified it for good
+  };
+  /// The bottom face of a box: what "the bottom plane of the box" (\thesis{§5.4}) means for a
+  /// box of any orientation.
+  struct BottomFace {
+    bool level = false;             ///< its outward normal is along −y within normalTolerance
+    std::array<Vec2, 4> corners{};  ///< xz projections, numbered as in the file's diagram
+    double tolerance = 0.0;         ///< m: how near a point must be to a corner to mark it
+  };
+  /// One point of a manifold whose normal is along y, as A.2 sees a contact: a point with a top
+  /// and a bottom body.
+  struct VerticalContact {
+    double height = 0.0;     ///< y of the point, m
+    int bottom = -1;         ///< body index
+    int top = -1;            ///< body index
+    int manifold = -1;       ///< index into the contacts
+    int point = -1;          ///< index into the manifold's points
+    Vec2 xz = Vec2::Zero();  ///< the point projected to the xz plane, m
+  };
+
+ private:
+  std::vector<char> stable_;              ///< the flags of the last call
+  std::vector<BodyMarks> marks_;          ///< per body
+  std::vector<BottomFace> bottom_;        ///< per body
+  std::vector<VerticalContact> sorted_;   ///< L6's points, lowest first
+  std::vector<Vec2> hullPoints_, hull_;   ///< the footnote rule's hull
+};
 
 }  // namespace boxsim

@@ -13,7 +13,7 @@ void ContactIslands::reset(const std::vector<char>& movable) {
   parent_.resize(n);
   std::iota(parent_.begin(), parent_.end(), 0);
   size_.assign(n, 1);
-  movable_ = movable;
+  movable_.assign(movable.begin(), movable.end());
   settled_.assign(n, 0);
   changed_.assign(n, 0);
 }

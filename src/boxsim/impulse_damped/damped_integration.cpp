@@ -162,7 +162,8 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   const long testsBefore = gathering_.kept().tests() + passTestsBefore;
   const long reusesBefore = gathering_.kept().reuses();
   // Bodies that take part in a contact (or, with dampCollidingBodies, a collision) this step.
-  std::vector<char> touched(n, 0);
+  std::vector<char>& touched = touched_;
+  touched.assign(n, 0);
   // The contacts of the step's start, found before the first pass would find them.
   gathering_.beginStep(world, dt, GravityMode::VelocityPlusGravity, margin);
   clock.lap(&DampedStepProfile::stepContacts);
@@ -191,7 +192,8 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
                               {params_.sleep.supportNormalY, params_.damping.alignedAngleDeg,
                                restingMargin, margin});
     }
-    dampenObjects(world, dt, touched, params_.damping, params_.impulse.integrator, *support);
+    dampenObjects(world, dt, touched, params_.damping, params_.impulse.integrator, *support,
+                  &dampedPoses_);
   } else {
     // DAMPENOBJECTS L22: without damping, its position update alone.
     predictPositions(world, dt, Vec3::Zero(), params_.impulse.integrator);
@@ -199,7 +201,7 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   clock.lap(&DampedStepProfile::velocitiesAndDamping);
   // DAMPEDINTEGRATION L5: FIXCONTACTCONSTRAINTS, and the contacts after it.
   // Kept as the next step's starting contacts, where the support test reads them.
-  lastContacts_ = fixContacts(world, dt, margin);
+  fixContacts(world, dt, margin);
   const std::vector<ContactManifold>& contacts = lastContacts_;
   if (params_.damping.supportTest) {
     lastPoses_.resize(n);
@@ -208,7 +210,7 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   clock.lap(&DampedStepProfile::fixContacts);
   // DAMPEDINTEGRATION L6: SETGEOMETRICALLYSTABLE.
   if (params_.useGeometricStability) {
-    stable_ = setGeometricallyStable(world, contacts, params_.geometricStability);
+    stable_ = stability_(world, contacts, params_.geometricStability);
     sleeping_.holdStability(stable_);
   }
   clock.lap(&DampedStepProfile::stability);
@@ -274,35 +276,41 @@ void DampedIntegrationStepper::resolveContacts(World& world, double dt, double m
   }
 }
 
-std::vector<ContactManifold> DampedIntegrationStepper::fixContacts(World& world, double dt,
-                                                                   double margin) {
+void DampedIntegrationStepper::fixContacts(World& world, double dt, double margin) {
   const double restingMargin = restingContactMargin(world, margin, dt);
   // Sleeping bodies still stand in as immovable, so none moves.
-  std::vector<ContactManifold> contacts;
+  std::vector<ContactManifold>& contacts = lastContacts_;
   // The broad phase of these contacts, from the step's candidates when they cover it.
-  std::vector<std::pair<int, int>> pairs;
+  std::vector<std::pair<int, int>>& pairs = fixLists_.pairs;
   const bool havePairs = gathering_.stepPairs(world, restingMargin, pairs);
   // Every narrow phase of the step's end goes through the kept ones: the pairs that stand as
   // they stood when last tested (and the next step's start tests these same poses) are not
   // tested again.
   KeptNarrowPhase& kept = gathering_.kept();
-  if (!params_.fixContactConstraints)
-    return havePairs ? findContacts(world, restingMargin, pairs, &kept)
-                     : findContacts(world, restingMargin, candidatePairs(world, restingMargin), &kept);
+  if (!params_.fixContactConstraints) {
+    if (havePairs)
+      findContacts(world, restingMargin, pairs, &kept, contacts);
+    else
+      findContacts(world, restingMargin, candidatePairs(world, restingMargin), &kept, contacts);
+    return;
+  }
   // Nudging moves x alone: the bodies it moved are those whose x changed.
   const std::size_t n = world.bodies.size();
-  std::vector<Vec3> before(n);
+  std::vector<Vec3>& before = fixLists_.before;
+  before.resize(n);
   for (std::size_t i = 0; i < n; ++i) before[i] = world.bodies[i].s.x;
   // SETGEOMETRICALLYSTABLE, for the next step's COLLIDE L11-L14, needs the contacts after
   // DAMPEDINTEGRATION L5: those it found, with the pairs of the bodies it nudged found again.
   if (fixContactConstraints(world, restingMargin, params_.fixContacts, dt, &contacts,
-                            havePairs ? &pairs : nullptr, &kept) > 0) {
-    std::vector<char> nudged(n, 0);
+                            havePairs ? &pairs : nullptr, &kept, &fixLists_.order) > 0) {
+    std::vector<char>& nudged = fixLists_.nudged;
+    nudged.resize(n);
     for (std::size_t i = 0; i < n; ++i)
       nudged[i] = static_cast<char>(world.bodies[i].s.x != before[i]);
-    contacts = refindContacts(world, restingMargin, contacts, nudged, &kept);
+    refindContacts(world, restingMargin, contacts, nudged, &kept, fixLists_.broadPhase,
+                   fixLists_.refound);
+    contacts.swap(fixLists_.refound);
   }
-  return contacts;
 }
 
 void DampedIntegrationStepper::endStep(World& world, double dt,

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "boxsim/collision/broad_phase.hpp"
 #include "boxsim/core/stepper.hpp"
 #include "boxsim/geometric_stability/geometric_stability.hpp"
 #include "boxsim/impulse_damped/centre_over_support.hpp"
@@ -17,6 +18,7 @@
 #include "boxsim/impulse_damped/friction_totals.hpp"
 #include "boxsim/impulse_damped/continuous_collision.hpp"
 #include "boxsim/impulse_damped/dampen_objects.hpp"
+#include "boxsim/impulse_damped/fix_contact_constraints.hpp"
 #include "boxsim/impulse_damped/impulse_params.hpp"
 #include "boxsim/impulse_damped/impulse_pass.hpp"
 #include "boxsim/impulse_damped/sleeping.hpp"
@@ -149,8 +151,9 @@ class DampedIntegrationStepper final : public Stepper {
   void resolveContacts(World& world, double dt, double margin, std::vector<char>& touched,
                        StepStats& stats);
   /// \alg{FIXCONTACTCONSTRAINTS} (DAMPEDINTEGRATION L5), when on, and the contacts after it
-  /// within the resting-contact margin, for SETGEOMETRICALLYSTABLE and sleeping.
-  std::vector<ContactManifold> fixContacts(World& world, double dt, double margin);
+  /// within the resting-contact margin, for SETGEOMETRICALLYSTABLE and sleeping, into
+  /// lastContacts_.
+  void fixContacts(World& world, double dt, double margin);
   /// The end of a step: the normal model's memory and the gathering's step end, sleeping
   /// (\thesis{§4.5}) decides from `contacts`, and `stats` gets the contact and sleeper counts.
   void endStep(World& world, double dt, const std::vector<ContactManifold>& contacts,
@@ -161,12 +164,26 @@ class DampedIntegrationStepper final : public Stepper {
   ContactGathering gathering_;
   VisualPlausibility plausibility_;
   std::vector<char> stable_;
+  /// SETGEOMETRICALLYSTABLE, its working lists kept from step to step.
+  GeometricStability stability_;
   // The contacts at the end of the last step (FIXCONTACTCONSTRAINTS'), whose poses the next step
   // starts from: the support test of DAMPENOBJECTS reads them (DampingParams::supportTest); and
   // those poses (x, q per body), so that a world moved or changed between steps has its
   // contacts found again.
   std::vector<ContactManifold> lastContacts_;
   std::vector<std::pair<Vec3, Quat>> lastPoses_;
+  /// The working lists of a step, kept from step to step for their room: the bodies a step's
+  /// passes touched (DAMPENOBJECTS' colliding bodies), and fixContacts'.
+  std::vector<char> touched_;
+  SavedPoses dampedPoses_;  ///< DAMPENOBJECTS' poses before L22
+  struct FixLists {
+    std::vector<std::pair<int, int>> pairs;  ///< the broad phase's pairs
+    std::vector<Vec3> before;                ///< per body, x before the nudges, m
+    std::vector<char> nudged;                ///< per body, moved by a nudge
+    FixContactOrder order;                   ///< L1's order
+    BroadPhaseLists broadPhase;              ///< refindContacts' lists
+    std::vector<ContactManifold> refound;    ///< the contacts after the nudges
+  } fixLists_;  ///< fixContacts' lists
   /// The support test of DAMPENOBJECTS, its buffers kept from step to step.
   SupportTest supportTest_;
   Sleeping sleeping_;

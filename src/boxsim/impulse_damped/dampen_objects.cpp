@@ -127,14 +127,16 @@ void dampMomenta(World& world, double dt, const std::vector<char>& touched,
 
 DampingStats dampenObjects(World& world, double dt, const std::vector<char>& touched,
                            const DampingParams& params, Integrator integrator,
-                           const std::vector<SupportVerdict>& support) {
+                           const std::vector<SupportVerdict>& support, SavedPoses* before) {
   DampingStats stats;
   dampMomenta(world, dt, touched, params, &stats, support);
   // DAMPENOBJECTS L22: integrateObjectPositions(Δt, STANDARD_GRAVITY) with the velocities as they
   // now are. STANDARD_GRAVITY is read as gravity applied the usual way, which L3 already did to the
   // velocities; adding g Δt again, as the passes' VELOCITY_PLUS_GRAVITY does for a prediction,
   // would count the step's gravity twice in the positions.
-  const SavedPoses old = predictPositions(world, dt, Vec3::Zero(), integrator);
+  SavedPoses ownPoses;
+  SavedPoses& old = before ? *before : ownPoses;
+  predictPositions(world, dt, Vec3::Zero(), integrator, old);
   // DAMPENOBJECTS L23-L28: a body that would move less than ε10 and turn less than ε11 stays put.
   // DEVIATION(DAMPENOBJECTS L23): only bodies that had a contact interaction and lie with a face
   // perpendicular to gravity (§5.3's third mark of a chattering body) are snapped. A body in

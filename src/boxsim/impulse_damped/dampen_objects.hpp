@@ -10,6 +10,7 @@
 #include "boxsim/core/world.hpp"
 #include "boxsim/impulse_damped/centre_over_support.hpp"
 #include "boxsim/impulse_damped/impulse_params.hpp"
+#include "boxsim/impulse_damped/predicted_positions.hpp"
 
 namespace boxsim {
 
@@ -45,10 +46,12 @@ void dampMomenta(World& world, double dt, const std::vector<char>& touched,
 /// with `integrator`), then the snap of
 /// \alg{DAMPENOBJECTS L23-L28} for bodies in contact that lie with a face perpendicular to gravity.
 /// `support` as for dampMomenta; with DampingParams::supportTest the snap too holds only bodies
-/// over their support.
+/// over their support. `before`, when given, is the list the poses before L22 are kept in (a
+/// caller that asks every step keeps its room).
 DampingStats dampenObjects(World& world, double dt, const std::vector<char>& touched,
                            const DampingParams& params,
                            Integrator integrator = Integrator::SemiImplicitEuler,
-                           const std::vector<SupportVerdict>& support = {});
+                           const std::vector<SupportVerdict>& support = {},
+                           SavedPoses* before = nullptr);
 
 }  // namespace boxsim

@@ -23,17 +23,25 @@ double fixLiftLimit(const RigidBody& body, const FixContactParams& params, const
 int fixContactConstraints(World& world, double margin, const FixContactParams& params, double dt,
                           std::vector<ContactManifold>* gathered,
                           const std::vector<std::pair<int, int>>* pairs,
-                          KeptNarrowPhase* kept) {
-  // FIXCONTACTCONSTRAINTS L1: sortContactPointsAscending.
-  std::vector<ContactManifold> contacts =
-      pairs ? findContacts(world, margin, *pairs, kept)
-            : findContacts(world, margin, candidatePairs(world, margin), kept);
+                          KeptNarrowPhase* kept, FixContactOrder* keptOrder) {
+  // FIXCONTACTCONSTRAINTS L1: sortContactPointsAscending. Found straight into `gathered` when
+  // the caller wants them.
+  std::vector<ContactManifold> found;
+  std::vector<ContactManifold>& contacts = gathered ? *gathered : found;
+  if (pairs)
+    findContacts(world, margin, *pairs, kept, contacts);
+  else
+    findContacts(world, margin, candidatePairs(world, margin), kept, contacts);
   // The order by height, as indices: the manifolds themselves stay in findContacts order for
   // `gathered`, and are not moved about by the sort.
-  std::vector<std::tuple<double, int, int, std::size_t>> order(contacts.size());
+  FixContactOrder ownOrder;
+  FixContactOrder& order = keptOrder ? *keptOrder : ownOrder;
+  order.resize(contacts.size());
   for (std::size_t k = 0; k < contacts.size(); ++k)
     order[k] = {contacts[k].centroid().y(), contacts[k].a, contacts[k].b, k};
-  std::stable_sort(order.begin(), order.end());
+  // The index makes every key distinct, so the plain sort gives the stable sort's order without
+  // the stable sort's buffer.
+  std::sort(order.begin(), order.end());
   int nudges = 0;
   for (const auto& entry : order) {  // FIXCONTACTCONSTRAINTS L2
     const ContactManifold& c = contacts[std::get<3>(entry)];
@@ -81,7 +89,6 @@ int fixContactConstraints(World& world, double margin, const FixContactParams& p
       } while (n < limit && depthAfterTranslationAtLeast(box, stable, sat, 1.01 * step * k) > slop);
     }
   }
-  if (gathered) *gathered = std::move(contacts);
   return nudges;
 }
 

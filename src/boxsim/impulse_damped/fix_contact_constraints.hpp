@@ -4,6 +4,8 @@
 /// so no kinetic energy is added (the thesis' change to Guendelman et al.'s shock step).
 #pragma once
 
+#include <cstddef>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -27,6 +29,10 @@ namespace boxsim {
 double fixLiftLimit(const RigidBody& body, const FixContactParams& params, const Vec3& gravity,
                     double dt);
 
+/// The order of FIXCONTACTCONSTRAINTS L1, by height: (height of the manifold's centroid, m; body a;
+/// body b; index of the manifold).
+using FixContactOrder = std::vector<std::tuple<double, int, int, std::size_t>>;
+
 /// Contacts gathered with `margin` (m) are sorted by the height of their point
 /// (\alg{FIXCONTACTCONSTRAINTS L1}); for each, the upper body (higher centre; skipped when
 /// immovable) is nudged by ε1 ℓ along the lower-to-upper normal while the pair still overlaps by
@@ -40,9 +46,11 @@ double fixLiftLimit(const RigidBody& body, const FixContactParams& params, const
 /// gathering's step candidates, ContactGathering::stepPairs), which spares the broad phase.
 /// `kept`, when given, runs every narrow phase (KeptNarrowPhase), which spares the tests of
 /// pairs standing as when last tested; the same nudges.
+/// `order`, when given, is the list the sort of L1 works in, kept by a caller that asks every
+/// step so that it keeps its room.
 int fixContactConstraints(World& world, double margin, const FixContactParams& params, double dt,
                           std::vector<ContactManifold>* gathered = nullptr,
                           const std::vector<std::pair<int, int>>* pairs = nullptr,
-                          KeptNarrowPhase* kept = nullptr);
+                          KeptNarrowPhase* kept = nullptr, FixContactOrder* order = nullptr);
 
 }  // namespace boxsim

@@ -148,7 +148,8 @@ void OncePerStepGathering::refreshIslands(const World& world) {
   const std::size_t n = world.bodies.size();
   if (islandSweep_ != candidates_.sweeps() || islands_.size() != n) {
     // A new sweep: the islands of its pairs and of the cached ones, every island active.
-    std::vector<char> movable(n);
+    std::vector<char>& movable = movable_;
+    movable.resize(n);
     for (std::size_t i = 0; i < n; ++i) movable[i] = static_cast<char>(!world.bodies[i].immovable);
     islands_.reset(movable);
     for (const PairReach& pair : slowPairs_.reaches()) islands_.join(pair.a, pair.b);

@@ -194,6 +194,7 @@ class OncePerStepGathering {
   std::uint64_t islandSweep_ = 0;     ///< the sweep islands_ was built after
   std::size_t joinedCandidates_ = 0;  ///< candidates joined into islands_ so far
   std::vector<char> skip_;            ///< per body, this pass: its island is settled
+  std::vector<char> movable_;         ///< per body, refreshIslands(): movable
   bool anySkipped_ = false;           ///< this pass: some body's island is settled
   long narrowPhases_ = 0;
   long passNarrowPhases_ = 0;

@@ -18,12 +18,18 @@ void movePredicted(RigidBody& body, double dt, const Vec3& extraVelocity,
 SavedPoses predictPositions(World& world, double dt, const Vec3& extraVelocity,
                             Integrator integrator) {
   SavedPoses saved;
+  predictPositions(world, dt, extraVelocity, integrator, saved);
+  return saved;
+}
+
+void predictPositions(World& world, double dt, const Vec3& extraVelocity, Integrator integrator,
+                      SavedPoses& saved) {
+  saved.clear();
   saved.reserve(world.bodies.size());
   for (RigidBody& body : world.bodies) {
     saved.push_back({body.s.x, body.s.q, body.R, body.Iinv, body.immovable});
     if (!body.immovable) movePredicted(body, dt, extraVelocity, integrator);
   }
-  return saved;
 }
 
 void restorePose(RigidBody& body, const SavedPose& pose) {

@@ -49,6 +49,10 @@ void movePredicted(RigidBody& body, double dt, const Vec3& extraVelocity,
 /// turns it as movePredicted does with `integrator`; returns the poses before.
 SavedPoses predictPositions(World& world, double dt, const Vec3& extraVelocity,
                             Integrator integrator = Integrator::SemiImplicitEuler);
+/// predictPositions with the poses before written into `saved` (over what it held, its room
+/// kept).
+void predictPositions(World& world, double dt, const Vec3& extraVelocity, Integrator integrator,
+                      SavedPoses& saved);
 
 /// Puts one body back to a saved pose, reusing the saved R and Iinv unless the body's
 /// mobility changed since (then everything derived is recomputed); v and ω are recomputed.

@@ -83,7 +83,8 @@ bool Sleeping::begin(World& world) {
     asleep_.assign(n, 0);
     return true;
   }
-  std::vector<int> disturbed;
+  std::vector<int>& disturbed = disturbed_;
+  disturbed.clear();
   for (std::size_t i = 0; i < n; ++i) {
     if (!asleep_[i]) continue;
     // Made immovable from outside (a body waiting for its launch): no longer ours to hold.
@@ -124,13 +125,14 @@ bool Sleeping::restsFor(int i, long steps) const {
   if (stillSteps_[i] >= steps) return true;
   if (!params_.chatterDetection || !chatter_.chatters(static_cast<std::size_t>(i))) return false;
   // Chatter needs something to chatter on: a free body drifting slowly is not at rest.
-  for (int e : restingOf_[i])
+  for (int e : restingOf(static_cast<std::size_t>(i)))
     if (supportedBy(resting_[e], i)) return true;
   return false;
 }
 
 void Sleeping::wake(World& world, int body) {
-  std::vector<int> pending{body};
+  std::vector<int>& pending = pending_;
+  pending.assign(1, body);
   while (!pending.empty()) {
     const int i = pending.back();
     pending.pop_back();
@@ -140,7 +142,7 @@ void Sleeping::wake(World& world, int body) {
     chatter_.reset(static_cast<std::size_t>(i));
     restore(world, i);
     // Spreading: the sleeping bodies this one supports may lose their support.
-    for (int e : restingOf_[i]) {
+    for (int e : restingOf(static_cast<std::size_t>(i))) {
       const ContactManifold& c = resting_[e];
       const int other = c.a == i ? c.b : c.a;
       if (asleep_[other] && supportedBy(c, other)) pending.push_back(other);
@@ -149,11 +151,22 @@ void Sleeping::wake(World& world, int body) {
 }
 
 void Sleeping::indexResting(std::size_t n) {
-  restingOf_.assign(n, {});
-  for (std::size_t e = 0; e < resting_.size(); ++e) {
-    restingOf_[resting_[e].a].push_back(static_cast<int>(e));
-    restingOf_[resting_[e].b].push_back(static_cast<int>(e));
+  // A counting sort by body, into one flat list that keeps its room from step to step; each
+  // body's contacts in resting_'s order, as pushing them one by one would list them.
+  restingStart_.assign(n + 1, 0);
+  for (const ContactManifold& c : resting_) {
+    ++restingStart_[static_cast<std::size_t>(c.a) + 1];
+    ++restingStart_[static_cast<std::size_t>(c.b) + 1];
   }
+  for (std::size_t i = 0; i < n; ++i) restingStart_[i + 1] += restingStart_[i];
+  restingIndex_.resize(restingStart_[n]);
+  for (std::size_t e = 0; e < resting_.size(); ++e) {
+    // Fill from each body's start, then shift the starts back (the last body's end stays).
+    restingIndex_[restingStart_[static_cast<std::size_t>(resting_[e].a)]++] = static_cast<int>(e);
+    restingIndex_[restingStart_[static_cast<std::size_t>(resting_[e].b)]++] = static_cast<int>(e);
+  }
+  for (std::size_t i = n; i > 0; --i) restingStart_[i] = restingStart_[i - 1];
+  restingStart_[0] = 0;
 }
 
 double Sleeping::pointInverseMass(const World& world, int body, const Vec3& r,
@@ -192,8 +205,9 @@ void Sleeping::holdStability(std::vector<char>& stable) const {
     if (asleep_[i]) stable[i] = sleepStable_[i];
 }
 
-std::vector<ContactManifold> Sleeping::skippedContacts(const World& world) const {
-  std::vector<ContactManifold> skipped;
+const std::vector<ContactManifold>& Sleeping::skippedContacts(const World& world) const {
+  std::vector<ContactManifold>& skipped = skipped_;
+  skipped.clear();
   for (const ContactManifold& c : resting_)
     if (world.bodies[c.a].immovable && world.bodies[c.b].immovable) skipped.push_back(c);
   return skipped;
@@ -204,7 +218,8 @@ void Sleeping::end(World& world, const std::vector<ContactManifold>& contacts,
   const std::size_t n = world.bodies.size();
   // The contact graph at the end of the step: what the narrow phase found, plus the remembered
   // manifolds of pairs it skipped because both bodies stood immovable (neither has moved).
-  std::vector<ContactManifold> next = contacts;
+  std::vector<ContactManifold>& next = next_;
+  next.assign(contacts.begin(), contacts.end());
   next.reserve(contacts.size() + resting_.size());
   for (const ContactManifold& c : resting_)
     if (world.bodies[c.a].immovable && world.bodies[c.b].immovable) next.push_back(c);
@@ -241,7 +256,7 @@ void Sleeping::end(World& world, const std::vector<ContactManifold>& contacts,
       if (asleep_[i] || world.bodies[i].immovable || !restsFor(static_cast<int>(i), steps))
         continue;
       bool supported = true;
-      for (int e : restingOf_[i]) {
+      for (int e : restingOf(static_cast<std::size_t>(i))) {
         const ContactManifold& c = resting_[e];
         const int other = c.a == static_cast<int>(i) ? c.b : c.a;
         const bool holds = asleep_[other] || world.bodies[other].immovable;

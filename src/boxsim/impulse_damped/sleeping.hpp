@@ -98,8 +98,8 @@ class Sleeping {
   void holdStability(std::vector<char>& stable) const;
 
   /// The remembered manifolds of pairs whose bodies both stand immovable now, which the broad
-  /// phase skips, in (a, b) order.
-  std::vector<ContactManifold> skippedContacts(const World& world) const;
+  /// phase skips, in (a, b) order; valid until the next call.
+  const std::vector<ContactManifold>& skippedContacts(const World& world) const;
 
   /// After the passes of a step of dt s: remembers the contact graph (`contacts`, found at the
   /// end of the step, plus the skipped pairs), wakes sleeping bodies penetrated beyond the slop,
@@ -135,8 +135,19 @@ class Sleeping {
   /// Whether body i is at rest enough to fall asleep after `steps` steps: exactly still that
   /// long, or chattering (chatter detection on) on at least one support.
   bool restsFor(int i, long steps) const;
-  /// Rebuilds restingOf_ (for each of n bodies, the indices of its remembered contacts).
+  /// Rebuilds the index of resting_ by body (restingOf) for n bodies.
   void indexResting(std::size_t n);
+  /// The indices into resting_ of body i's remembered contacts, in resting_'s order.
+  struct Indices {
+    const int* first;  ///< the first index
+    const int* last;   ///< one past the last
+    const int* begin() const { return first; }  ///< for range-for
+    const int* end() const { return last; }     ///< for range-for
+  };
+  /// As Indices says, for body i (after indexResting).
+  Indices restingOf(std::size_t i) const {
+    return {restingIndex_.data() + restingStart_[i], restingIndex_.data() + restingStart_[i + 1]};
+  }
   /// 1/kg: the normal velocity change per unit normal impulse of body's material point at lever
   /// arm r (m) along n, with the body's own mass properties even while it stands immovable.
   double pointInverseMass(const World& world, int body, const Vec3& r, const Vec3& n) const;
@@ -155,7 +166,16 @@ class Sleeping {
   // both stand immovable are kept while they do: the broad phase skips such pairs, so the
   // narrow phase cannot report them again, and neither body has moved.
   std::vector<ContactManifold> resting_;
-  std::vector<std::vector<int>> restingOf_;  // per body: indices into resting_
+  // The index of resting_ by body, one flat list: body i's contacts are
+  // restingIndex_[restingStart_[i], restingStart_[i + 1]).
+  std::vector<std::size_t> restingStart_;
+  std::vector<int> restingIndex_;
+  // Working lists kept for their room: the contact graph end() builds, the bodies begin() finds
+  // disturbed, wake()'s bodies to wake, skippedContacts()' answer.
+  std::vector<ContactManifold> next_;
+  std::vector<int> disturbed_;
+  std::vector<int> pending_;
+  mutable std::vector<ContactManifold> skipped_;
 };
 
 }  // namespace boxsim

@@ -107,7 +107,7 @@ void StepCandidates::sweep(const World& world, const StepBodies& bodies,
   // Sorted again when first needed (grow), from these bounds.
   index_.valid = false;
   index_.regrown.clear();
-  sweptKeys_ = candidatePairs(world, sweptLo_, sweptHi_, sweepMargin_);
+  candidatePairs(world, sweptLo_, sweptHi_, sweepMargin_, sweepAndPrune_, sweptKeys_);
   // The cached pairs among them (both lists in increasing (a, b) order): a sweep within the
   // step keeps the cache, which still names its pairs.
   std::size_t k = 0;
@@ -200,7 +200,8 @@ void StepCandidates::grow(const World& world, const StepBodies& bodies,
   }
   // Each outgrown body against the bodies near it (from the index, or all of them), by the
   // sweep's test on the new bounds (a pair of two outgrown bodies once, from its lower index).
-  std::vector<std::pair<int, int>> found;
+  std::vector<std::pair<int, int>>& found = found_;
+  found.clear();
   const auto test = [&](int i, int j) {
     if (j == i || (isOutgrown[j] && j < i)) return;
     if (world.bodies[i].immovable && world.bodies[j].immovable) return;
@@ -239,9 +240,14 @@ bool StepCandidates::pairsAt(const World& world, double margin,
                              std::vector<std::pair<int, int>>& pairs) const {
   if (!(margin <= sweepMargin_) || sweptLo_.size() != world.bodies.size()) return false;
   const std::size_t n = world.bodies.size();
-  std::vector<Vec3> lo(n), hi(n);
-  std::vector<char> outside(n, 0);
-  std::vector<int> outsiders;
+  std::vector<Vec3>& lo = nowLo_;
+  std::vector<Vec3>& hi = nowHi_;
+  std::vector<char>& outside = outside_;
+  std::vector<int>& outsiders = outsiders_;
+  lo.resize(n);
+  hi.resize(n);
+  outside.assign(n, 0);
+  outsiders.clear();
   for (std::size_t i = 0; i < n; ++i) {
     obbBounds(Obb::of(world.bodies[i]), 0.0, lo[i], hi[i]);
     // Inside, bound for bound: then sweptLo_[b] - sweptHi_[a] <= lo[b] - hi[a] in floating
@@ -254,7 +260,8 @@ bool StepCandidates::pairsAt(const World& world, double margin,
     }
   }
   if (outsiders.size() > kMaxDirectlyGrown) return false;
-  std::vector<std::pair<int, int>> found;
+  std::vector<std::pair<int, int>>& found = pairs;
+  found.clear();
   for (const Candidate& c : candidates_)
     if (!outside[c.a] && !outside[c.b] && boundsWithin(lo[c.a], hi[c.a], lo[c.b], hi[c.b], margin))
       found.emplace_back(c.a, c.b);
@@ -270,7 +277,6 @@ bool StepCandidates::pairsAt(const World& world, double margin,
     }
   if (!outsiders.empty() || !grownKeys_.empty())
     std::sort(found.begin(), found.end());
-  pairs.swap(found);
   return true;
 }
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "boxsim/collision/separating_axis.hpp"
+#include "boxsim/collision/sweep_and_prune.hpp"
 #include "boxsim/core/world.hpp"
 #include "boxsim/impulse_damped/slow_pair_cache.hpp"
 #include "boxsim/impulse_damped/step_bodies.hpp"
@@ -125,6 +126,13 @@ class StepCandidates {
   SweptIndex index_;                            ///< sweptLo_, sweptHi_ sorted (grow)
   std::vector<char> hasCandidate_;              ///< per body: in at least one candidate pair
   std::vector<char> isOutgrown_;                ///< per body, in grow(): among the outgrown
+  std::vector<std::pair<int, int>> found_;      ///< grow()'s new pairs
+  SweepAndPrune sweepAndPrune_;                 ///< the sweep's working lists
+  /// pairsAt's working lists: per body its bounds now and whether they left the swept ones;
+  /// the bodies that did.
+  mutable std::vector<Vec3> nowLo_, nowHi_;
+  mutable std::vector<char> outside_;
+  mutable std::vector<int> outsiders_;
   std::uint64_t sweeps_ = 0;                    ///< sweeps so far
 };
 
