@@ -4,8 +4,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <numeric>
+#include <sstream>
 #include <fstream>
 #include <string>
 
@@ -165,29 +167,56 @@ long peakResidentKiB() {
 }
 
 long peakResidentOfRun(const std::vector<std::string>& arguments) {
+  const std::optional<std::string> output = outputOfRun("", arguments);
+  if (!output) return -1;
+  std::istringstream in(*output);
+  long value = -1, last = -1;
+  while (in >> value) last = value;
+  return last;
+}
+
+std::optional<std::string> outputOfRun(const std::string& program,
+                                       const std::vector<std::string>& arguments) {
 #if defined(__linux__)
-  // The program's own path, then every argument quoted for the shell.
-  char self[4096];
-  const ssize_t length = readlink("/proc/self/exe", self, sizeof self - 1);
-  if (length <= 0) return -1;
-  self[length] = '\0';
-  std::string command;
-  for (const char* part : {"'", static_cast<const char*>(self), "'"}) command.append(part);
-  for (const std::string& argument : arguments) {
-    command.append(" '");
-    command.append(argument);
-    command.append("'");
+  // The program's path, then every argument quoted for the shell.
+  std::string path = program;
+  if (path.empty()) {
+    char self[4096];
+    const ssize_t length = readlink("/proc/self/exe", self, sizeof self - 1);
+    if (length <= 0) return std::nullopt;
+    self[length] = '\0';
+    path = self;
   }
+  std::string command = "'" + path + "'";
+  for (const std::string& argument : arguments) command += " '" + argument + "'";
   std::fflush(nullptr);
   FILE* run = popen(command.c_str(), "r");
-  if (!run) return -1;
-  long value = -1, last = -1;
-  while (std::fscanf(run, "%ld", &value) == 1) last = value;
-  return pclose(run) == 0 ? last : -1;
+  if (!run) return std::nullopt;
+  std::string output;
+  char buffer[4096];
+  for (std::size_t got; (got = std::fread(buffer, 1, sizeof buffer, run)) > 0;)
+    output.append(buffer, got);
+  if (pclose(run) != 0) return std::nullopt;
+  return output;
 #else
+  (void)program;
   (void)arguments;
-  return -1;
+  return std::nullopt;
 #endif
+}
+
+std::uint64_t poseDigest(const std::vector<PeerPose>& poses) {
+  std::uint64_t hash = 1469598103934665603ULL;
+  const auto add = [&](double value) {
+    unsigned char bytes[sizeof value];
+    std::memcpy(bytes, &value, sizeof value);
+    for (unsigned char b : bytes) hash = (hash ^ b) * 1099511628211ULL;
+  };
+  for (const PeerPose& pose : poses) {
+    for (int k = 0; k < 3; ++k) add(pose.x[k]);
+    for (int k = 0; k < 4; ++k) add(pose.q.coeffs()[k]);
+  }
+  return hash;
 }
 
 }  // namespace boxsim::peers

@@ -5,7 +5,9 @@
 #pragma once
 
 #include <functional>
+#include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -84,5 +86,13 @@ long peakResidentKiB();
 /// program's name, which is read from /proc/self/exe), as that run reports it on its standard
 /// output (the last number it prints); -1 where it cannot be started or reports nothing.
 long peakResidentOfRun(const std::vector<std::string>& arguments);
+/// The standard output of `program` run with `arguments` (each quoted for the shell), or
+/// nullopt where it cannot be started or exits with an error. An empty `program` is this
+/// program itself (read from /proc/self/exe).
+std::optional<std::string> outputOfRun(const std::string& program,
+                                       const std::vector<std::string>& arguments);
+/// A digest (64-bit FNV-1a) of the bits of every pose, position and orientation: equal for two
+/// runs that ended bit for bit alike.
+std::uint64_t poseDigest(const std::vector<PeerPose>& poses);
 
 }  // namespace boxsim::peers

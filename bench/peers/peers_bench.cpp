@@ -11,9 +11,14 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
+#include <numeric>
 #include <optional>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -183,6 +188,105 @@ std::string absentPeers() {
   return absent;
 }
 
+/// The native section's markers in the page: bench_peers keeps what lies between them.
+constexpr const char* kNativeBegin = "<!-- native build: written by bench_native -->";
+constexpr const char* kNativeEnd = "<!-- end of native build -->";
+
+/// The native section of `page` with its markers, or "" when it has none.
+std::string nativeSectionOf(const std::string& page) {
+  const std::size_t begin = page.find(kNativeBegin), end = page.find(kNativeEnd);
+  if (begin == std::string::npos || end == std::string::npos || end < begin) return "";
+  return page.substr(begin, end + std::string(kNativeEnd).size() - begin) + "\n";
+}
+
+/// `page` with its native section replaced by `section` (appended where it has none).
+std::string withNativeSection(const std::string& page, const std::string& section) {
+  const std::string old = nativeSectionOf(page);
+  if (old.empty()) return section.empty() ? page : page + "\n" + section;
+  std::string out = page;
+  out.replace(out.find(old), old.size(), section);
+  return out;
+}
+
+/// The text of the file at `path`, or "" where there is none.
+std::string fileText(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// One timed repetition of boxsim damped integration on `spec`: mean ms per step and the
+/// digest of the final poses.
+std::pair<double, std::uint64_t> timedDampedRun(const SceneSpec& spec, double dt) {
+  std::unique_ptr<PeerEngine> engine = makeEngine("damped");
+  RunResult result;
+  runRepetition(spec, *engine, dt, result);
+  std::vector<PeerPose> poses;
+  engine->read(poses);
+  return {result.meanMs(), poseDigest(poses)};
+}
+
+/// The native section: boxsim damped integration built as the project builds it against the
+/// same sources built with -march=native (`native`, that build's boxsim_peers), each scene's
+/// repetitions in turn, this process then a fresh native one.
+std::string nativeSection(const std::vector<SceneSpec>& scenes, const std::string& native,
+                          double durationScale, const RunSetup& setup,
+                          const std::string& stampText, const std::string& command) {
+  std::ostringstream rows;
+  for (const SceneSpec& spec : scenes) {
+    std::vector<double> portable, tuned;
+    std::uint64_t portableDigest = 0, nativeDigest = 0;
+    for (int rep = 0; rep < setup.reps; ++rep) {
+      const auto [ms, digest] = timedDampedRun(spec, setup.dt);
+      portable.push_back(ms);
+      portableDigest = digest;
+      const std::optional<std::string> output =
+          outputOfRun(native, {"--timing-run", "damped", "--scene", spec.base, "--restitution",
+                               shortestText(spec.restitution), "--sleep", spec.sleep ? "on" : "off",
+                               "--friction", shortestText(spec.friction), "--duration-scale",
+                               shortestText(durationScale)});
+      double nativeMs = 0.0;
+      unsigned long long nativeBits = 0;
+      if (!output || std::sscanf(output->c_str(), "%lf %llx", &nativeMs, &nativeBits) != 2)
+        throw std::runtime_error("the native build (" + native + ") did not run " + spec.label());
+      tuned.push_back(nativeMs);
+      nativeDigest = nativeBits;
+    }
+    const auto mean = [](const std::vector<double>& v) {
+      return std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
+    };
+    const auto range = [](const std::vector<double>& v) {
+      const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+      return shortestText(std::round(*lo * 1000.0) / 1000.0) + "–" +
+             shortestText(std::round(*hi * 1000.0) / 1000.0);
+    };
+    char ratio[32];
+    std::snprintf(ratio, sizeof ratio, "%.2f", mean(tuned) / mean(portable));
+    rows << "| " << spec.label() << " | " << range(portable) << " | " << range(tuned) << " | "
+         << ratio << " | " << (portableDigest == nativeDigest ? "yes" : "**no**") << " |\n";
+    std::fprintf(stderr, "%-28s portable %.4f ms  native %.4f ms  native / portable %s\n",
+                 spec.label().c_str(), mean(portable), mean(tuned), ratio);
+  }
+  std::ostringstream out;
+  out << kNativeBegin << "\n## What -march=native would add\n\n"
+      << "Written by `boxsim_peers --native` (`cmake --build build --target bench_native`); do "
+         "not edit by hand.\n\n"
+      << stampText << "- command: `" << command << "`\n\n"
+      << "boxsim damped integration as the project builds it (portable: no -march) against the same "
+         "sources built with `-march=native` for this machine, each repetition in turn: this "
+         "process, then a fresh process of the native build. *Rep means* are the repetitions' "
+         "mean ms per step; the ratio is the native build's mean over the portable one's (below "
+         "1: native is faster). *Same bits* compares the final poses of the two builds bit for bit: "
+         "GCC may fuse a multiply and an add into one FMA instruction where the target has one, "
+         "which rounds once instead of twice.\n\n"
+      << "| scene | portable rep means (ms) | native rep means (ms) | native ÷ portable | same bits |\n"
+      << "|---|---|---|---|---|\n"
+      << rows.str() << "\n"
+      << kNativeEnd << "\n";
+  return out.str();
+}
+
 std::string commandLine(int argc, char** argv) {
   std::string text = "boxsim_peers";
   for (int i = 1; i < argc; ++i) text += std::string(" ") + argv[i];
@@ -227,6 +331,14 @@ int main(int argc, char** argv) {
   double memorySeconds = 0.0;
   app.add_option("--memory-run", memoryEngine)->group("");
   app.add_option("--memory-seconds", memorySeconds)->group("");
+  // A timing run (the native comparison starts these in its other build): the one scene, once,
+  // under one engine; prints its mean ms per step and the digest of its final poses.
+  std::string timingEngine;
+  app.add_option("--timing-run", timingEngine)->group("");
+  std::string nativePath;
+  app.add_option("--native", nativePath,
+                 "Compare boxsim damped with the boxsim_peers of a -march=native build at this path "
+                 "(bench_native) and write that section of the page alone");
   CLI11_PARSE(app, argc, argv);
   std::optional<bool> sleep;
   if (!sleepText.empty()) sleep = sleepText == "on";
@@ -246,8 +358,37 @@ int main(int argc, char** argv) {
     return 0;
   }
 
+  if (!timingEngine.empty()) {
+    try {
+      const std::vector<SceneSpec> specs =
+          chosenScenes(sceneNames, restitution, sleep, friction, durationScale);
+      if (specs.size() != 1) throw std::invalid_argument("a timing run takes exactly one scene");
+      std::unique_ptr<PeerEngine> engine = makeEngine(timingEngine);
+      RunResult result;
+      runRepetition(specs.front(), *engine, setup.dt, result);
+      std::vector<PeerPose> poses;
+      engine->read(poses);
+      std::printf("%.17g %llx\n", result.meanMs(),
+                  static_cast<unsigned long long>(poseDigest(poses)));
+    } catch (const std::exception& e) {
+      std::cerr << "boxsim_peers: error: " << e.what() << "\n";
+      return 2;
+    }
+    return 0;
+  }
+
   try {
     setup.command = commandLine(argc, argv);
+    if (!nativePath.empty()) {
+      const std::string stampText = stamp(BOXSIM_SOURCE_DIR);
+      const std::string section =
+          nativeSection(chosenScenes(sceneNames, restitution, sleep, friction, durationScale),
+                        nativePath, durationScale, setup, stampText, setup.command);
+      std::cout << section;
+      if (!tablePath.empty())
+        boxsim::writeFileAtomically(tablePath, withNativeSection(fileText(tablePath), section));
+      return 0;
+    }
     setup.absent = absentPeers();
     // Stamped as the timing begins: the tree the binary was just built from (the bench_peers
     // target builds it first); edits made while the comparison runs are not in its numbers.
@@ -255,7 +396,9 @@ int main(int argc, char** argv) {
     std::vector<SceneResults> results;
     for (const SceneSpec& spec : chosenScenes(sceneNames, restitution, sleep, friction, durationScale))
       results.push_back(runScene(spec, enginesOf(spec, engineNames), setup));
-    const std::string page = markdownPage(results, setup, stampText);
+    // The native section, measured by its own target, stays as it was.
+    const std::string page = withNativeSection(markdownPage(results, setup, stampText),
+                                               tablePath.empty() ? "" : nativeSectionOf(fileText(tablePath)));
     std::cout << page;
     if (!tablePath.empty()) boxsim::writeFileAtomically(tablePath, page);
     if (!scalingPath.empty())
