@@ -210,6 +210,7 @@ TEST_CASE("refindContacts after some bodies moved equals findContacts, manifold 
           "[collision][broad_phase]") {
   testing::SeededRandom random(2024);
   int movedPairs = 0;
+  BroadPhaseLists lists;
   for (int scene = 0; scene < 40; ++scene) {
     World world = randomScene(random, scene % 3 == 0, scene % 2 == 0);
     const double margin = scene % 4 == 0 ? 0.0 : 0.05;
@@ -225,6 +226,13 @@ TEST_CASE("refindContacts after some bodies moved equals findContacts, manifold 
     const std::vector<ContactManifold> reference = findContacts(world, margin);
     INFO("scene " << scene << ", margin " << margin);
     CHECK(sameContacts(refindContacts(world, margin, before, moved), reference));
+    // With the broad phase's answer given, and with lists kept from the last scene.
+    std::vector<ContactManifold> refound;
+    const std::vector<std::pair<int, int>> pairs = candidatePairs(world, margin);
+    refindContacts(world, margin, before, moved, nullptr, lists, refound, &pairs);
+    CHECK(sameContacts(refound, reference));
+    refindContacts(world, margin, before, moved, nullptr, lists, refound);
+    CHECK(sameContacts(refound, reference));
     for (const ContactManifold& m : reference) movedPairs += (moved[m.a] || moved[m.b]) ? 1 : 0;
   }
   CHECK(movedPairs > 100);  // the merge was exercised, not only the kept pairs

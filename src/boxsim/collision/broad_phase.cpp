@@ -161,7 +161,8 @@ std::vector<ContactManifold> refindContacts(const World& world, double margin,
 
 void refindContacts(const World& world, double margin, const std::vector<ContactManifold>& before,
                     const std::vector<char>& moved, KeptNarrowPhase* kept, BroadPhaseLists& lists,
-                    std::vector<ContactManifold>& contacts) {
+                    std::vector<ContactManifold>& contacts,
+                    const std::vector<std::pair<int, int>>* pairs) {
   if (moved.size() != world.bodies.size())
     throw std::invalid_argument("refindContacts: give one moved flag per body");
   contacts.clear();
@@ -176,17 +177,20 @@ void refindContacts(const World& world, double margin, const std::vector<Contact
   for (std::size_t i = 0; i < moved.size(); ++i)
     if (moved[i]) lists.movedBodies.push_back(static_cast<int>(i));
   // Only the pairs with a moved body are looked at: with few moved bodies, finding just those
-  // is cheaper than the whole broad phase, and gives the same pairs in the same order.
-  const std::size_t n = world.bodies.size();
-  lists.lo.resize(n);
-  lists.hi.resize(n);
-  for (std::size_t i = 0; i < n; ++i)
-    obbBounds(Obb::of(world.bodies[i]), 0.0, lists.lo[i], lists.hi[i]);
-  if (lists.movedBodies.size() <= kMaxDirectlyRefound)
-    movedPairs(world, margin, moved, lists);
-  else
-    candidatePairs(world, lists.lo, lists.hi, margin, lists.sweep, lists.pairs);
-  for (const auto& [i, j] : lists.pairs) {
+  // is cheaper than the whole broad phase, and gives the same pairs in the same order. With the
+  // broad phase's answer given, they are picked from it.
+  if (!pairs) {
+    const std::size_t n = world.bodies.size();
+    lists.lo.resize(n);
+    lists.hi.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+      obbBounds(Obb::of(world.bodies[i]), 0.0, lists.lo[i], lists.hi[i]);
+    if (lists.movedBodies.size() <= kMaxDirectlyRefound)
+      movedPairs(world, margin, moved, lists);
+    else
+      candidatePairs(world, lists.lo, lists.hi, margin, lists.sweep, lists.pairs);
+  }
+  for (const auto& [i, j] : pairs ? *pairs : lists.pairs) {
     if (!moved[i] && !moved[j]) continue;
     keepBefore({i, j});
     ContactManifold m = narrowPhase(world, i, j, margin, kept);

@@ -115,11 +115,15 @@ struct BroadPhaseLists {
 };
 
 /// refindContacts(world, margin, before, moved, kept) into `contacts` (written over; not
-/// `before`), with the working lists in `lists`.
+/// `before`), with the working lists in `lists`. `pairs`, when given, is candidatePairs(world,
+/// margin) at the poses the bodies stand at now, found some cheaper way (as
+/// ContactGathering::stepPairs does): the pairs with a moved body are taken from it instead
+/// of a broad phase; the same list.
 /// \throws std::invalid_argument unless moved has one entry per body
 void refindContacts(const World& world, double margin, const std::vector<ContactManifold>& before,
                     const std::vector<char>& moved, KeptNarrowPhase* kept, BroadPhaseLists& lists,
-                    std::vector<ContactManifold>& contacts);
+                    std::vector<ContactManifold>& contacts,
+                    const std::vector<std::pair<int, int>>* pairs = nullptr);
 
 /// The deepest overlap of any pair of bodies (separating-axis depth), m; 0 when none overlaps.
 /// Pairs come from candidatePairs(world), so from world.broadPhase; the result does not depend

@@ -307,8 +307,10 @@ void DampedIntegrationStepper::fixContacts(World& world, double dt, double margi
     nudged.resize(n);
     for (std::size_t i = 0; i < n; ++i)
       nudged[i] = static_cast<char>(world.bodies[i].s.x != before[i]);
+    // The broad phase at the nudged poses from the step's candidates too, when they cover it.
+    const bool haveNudgedPairs = gathering_.stepPairs(world, restingMargin, pairs);
     refindContacts(world, restingMargin, contacts, nudged, &kept, fixLists_.broadPhase,
-                   fixLists_.refound);
+                   fixLists_.refound, haveNudgedPairs ? &pairs : nullptr);
     contacts.swap(fixLists_.refound);
   }
 }
