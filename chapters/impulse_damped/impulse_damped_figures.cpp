@@ -414,6 +414,43 @@ void figS7FrictionIncline(const std::string& dir) {
   writeFileAtomically(dir + "/s7_friction_incline.dat", out);
 }
 
+/// Beyond the thesis, the classic incline test: a frictional cube (μ = 0.5) released on inclines
+/// of 0°-60° (every 2.5°), its distance down the slope after 2 s under the plain impulse step and
+/// under damped integration as it runs by default (damping and sleeping on), beside Coulomb's
+/// a = g (sin θ − μ cos θ) stepped as semi-implicit Euler does (0 below atan μ = 26.6°).
+void figS7FrictionInclineSweep(const std::string& dir) {
+  const double mu = 0.5, dt = 1.0 / 60.0;
+  const int steps = 120;
+  std::string out = header("s7_friction_incline_sweep: a cube with mu = 0.5 released on an incline, distance "
+                           "down the slope after 2 s against the incline's angle",
+                           "angle_deg coulomb_m impulse_m damped_m");
+  for (int tenth = 0; tenth <= 600; tenth += 25) {
+    const double degrees = tenth / 10.0;
+    const double theta = degrees * kPi / 180.0;
+    const double a = std::max(0.0, 9.81 * (std::sin(theta) - mu * std::cos(theta)));
+    char buffer[96];
+    std::snprintf(buffer, sizeof buffer, "%.1f %.6e", degrees, a * dt * dt * steps * (steps + 1) / 2.0);
+    out += buffer;
+    for (int kind = 0; kind < 2; ++kind) {
+      World world;
+      world.restitution = 0.0;
+      Vec3 down;
+      const int box = addIncline(world, degrees, {mu, mu}, &down);
+      const Vec3 start = world.bodies[box].s.x;
+      std::unique_ptr<Stepper> stepper;
+      if (kind == 0)
+        stepper = std::make_unique<ImpulseStepper>();
+      else
+        stepper = std::make_unique<DampedIntegrationStepper>();
+      for (int k = 1; k <= steps; ++k) stepper->step(world, dt);
+      std::snprintf(buffer, sizeof buffer, " %.6e", (world.bodies[box].s.x - start).dot(down));
+      out += buffer;
+    }
+    out += "\n";
+  }
+  writeFileAtomically(dir + "/s7_friction_incline_sweep.dat", out);
+}
+
 /// Chatter detected from history (\thesis{§6.3.1}; SleepParams::chatterDetection) against
 /// sleeping as it is, on the die, the shot pyramid, the settling pile and the clump on the
 /// ground: when every body is asleep for good (s; -1 if not by the end), the mean kinetic energy
@@ -476,6 +513,7 @@ int main(int argc, char** argv) {
     figS5_3Ablation(sceneDir, outDir);
     figFig5_2DampingVsFriction(outDir);
     figS7FrictionIncline(outDir);
+    figS7FrictionInclineSweep(outDir);
     figS6_3ChatterHistory(sceneDir, outDir);
     std::vector<Run> timed;
     timed.push_back(runScene(sceneDir, "pyramid20_shot", "damped", 8.0));

@@ -47,6 +47,9 @@ struct SupportVerdict {
   /// turning it flat about its centre (\alg{DAMPENOBJECTS L10}) keeps it on every one of them.
   /// False with no support.
   bool level = false;
+  /// Coulomb friction cannot hold the body where it lies (markFrictionSlides): DAMPENOBJECTS'
+  /// rests (L6-L21) and its snap (L23-L28) leave it alone. Never set in a frictionless world.
+  bool slides = false;
 };
 
 /// For each body of `world` (one verdict per body, in body order), whether its centre of mass

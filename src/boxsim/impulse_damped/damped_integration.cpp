@@ -114,6 +114,12 @@ bool posesUnchanged(const World& world, const std::vector<std::pair<Vec3, Quat>>
   return true;
 }
 
+/// Whether some body of `world` has Coulomb friction.
+bool hasFriction(const World& world) {
+  return std::any_of(world.bodies.begin(), world.bodies.end(),
+                     [](const RigidBody& body) { return !body.friction.frictionless(); });
+}
+
 /// Adds the wall-clock time of each stage of a step to its slot of a profile, if there is one.
 class StageClock {
  public:
@@ -183,14 +189,22 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
     // changed since) a narrow phase of its own with the same margin.
     static const std::vector<SupportVerdict> asWritten;
     const std::vector<SupportVerdict>* support = &asWritten;
-    if (params_.damping.supportTest) {
+    const bool friction = hasFriction(world);
+    if (params_.damping.supportTest || friction) {
       const double restingMargin = restingContactMargin(world, margin, dt);
       if (!posesUnchanged(world, lastPoses_))
         lastContacts_ = findContacts(world, restingMargin, candidatePairs(world, restingMargin),
                                      &gathering_.kept());
-      support = &supportTest_(world, lastContacts_,
-                              {params_.sleep.supportNormalY, params_.damping.alignedAngleDeg,
-                               restingMargin, margin});
+      if (params_.damping.supportTest)
+        support = &supportTest_(world, lastContacts_,
+                                {params_.sleep.supportNormalY, params_.damping.alignedAngleDeg,
+                                 restingMargin, margin});
+    }
+    // Coulomb's cone bounds the rests (markFrictionSlides); a frictionless world is A.2's.
+    if (friction) {
+      slideVerdicts_.assign(support->begin(), support->end());
+      markFrictionSlides(world, lastContacts_, slideVerdicts_, &slideLists_);
+      support = &slideVerdicts_;
     }
     dampenObjects(world, dt, touched, params_.damping, params_.impulse.integrator, *support,
                   &dampedPoses_);
@@ -203,7 +217,7 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   // Kept as the next step's starting contacts, where the support test reads them.
   fixContacts(world, dt, margin);
   const std::vector<ContactManifold>& contacts = lastContacts_;
-  if (params_.damping.supportTest) {
+  if (params_.damping.supportTest || hasFriction(world)) {
     lastPoses_.resize(n);
     for (std::size_t i = 0; i < n; ++i) lastPoses_[i] = {world.bodies[i].s.x, world.bodies[i].s.q};
   }

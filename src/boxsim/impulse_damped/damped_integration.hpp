@@ -176,6 +176,9 @@ class DampedIntegrationStepper final : public Stepper {
   /// passes touched (DAMPENOBJECTS' colliding bodies), and fixContacts'.
   std::vector<char> touched_;
   SavedPoses dampedPoses_;  ///< DAMPENOBJECTS' poses before L22
+  /// The support verdicts with Coulomb's SupportVerdict::slides marked (worlds with friction).
+  std::vector<SupportVerdict> slideVerdicts_;
+  FrictionSlideLists slideLists_;  ///< markFrictionSlides' sums
   struct FixLists {
     std::vector<std::pair<int, int>> pairs;  ///< the broad phase's pairs
     std::vector<Vec3> before;                ///< per body, x before the nudges, m

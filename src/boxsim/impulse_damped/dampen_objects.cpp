@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "boxsim/impulse_damped/predicted_positions.hpp"
 
@@ -75,7 +76,10 @@ void dampMomenta(World& world, double dt, const std::vector<char>& touched,
     // DEVIATION(DAMPENOBJECTS L6-L21): with the support test, the steps that bring a body to
     // rest act only on a body whose centre lies over its support (DampingParams::supportTest).
     const bool gated = params.supportTest && !support.empty();
-    const bool overSupport = !gated || support[i].over;
+    // DEVIATION(DAMPENOBJECTS L6-L21): a body that its Coulomb friction cannot hold is not
+    // rested (markFrictionSlides).
+    const bool slides = !support.empty() && support[i].slides;
+    const bool overSupport = (!gated || support[i].over) && !slides;
     const bool yAxisAligned = isYAxisAligned(o, params.alignedAngleDeg) && overSupport;
     // DEVIATION(DAMPENOBJECTS L10): turning a box flat (towards y, about its centre) keeps it on
     // supporting faces that are level, but lifts it off a tilted one, or off all but the highest
@@ -125,6 +129,55 @@ void dampMomenta(World& world, double dt, const std::vector<char>& touched,
   }
 }
 
+void markFrictionSlides(const World& world, const std::vector<ContactManifold>& contacts,
+                        std::vector<SupportVerdict>& support, FrictionSlideLists* lists) {
+  const std::size_t n = world.bodies.size();
+  support.resize(n, SupportVerdict{true, true, false});
+  const double g = world.gravity.norm();
+  if (!(g > 0.0)) return;
+  const Vec3 down = world.gravity / g;
+  // Per body: the sum of the unit normals of its supports (into it), each weighted by how much
+  // of gravity it can bear (its component against gravity: a side contact bears none), and
+  // their μs averaged with the same weights.
+  bool anyFriction = false;
+  for (const RigidBody& body : world.bodies) anyFriction = anyFriction || !body.friction.frictionless();
+  if (!anyFriction) return;
+  FrictionSlideLists own;
+  FrictionSlideLists& sums = lists ? *lists : own;
+  std::vector<Vec3>& pushed = sums.pushed;
+  std::vector<double>& weight = sums.weight;
+  std::vector<double>& mu = sums.mu;
+  pushed.assign(n, Vec3::Zero());
+  weight.assign(n, 0.0);
+  mu.assign(n, 0.0);
+  for (const ContactManifold& m : contacts) {
+    if (m.count == 0) continue;
+    const double muStatic =
+        combinedFriction(world.bodies[m.a].friction, world.bodies[m.b].friction).muStatic;
+    for (const int i : {m.a, m.b}) {
+      const Vec3 into = i == m.b ? m.normal : Vec3(-m.normal);  // the normal runs from a to b
+      const double bears = -into.dot(down);
+      if (!(bears > 0.0)) continue;  // it does not push i against gravity
+      pushed[i] += bears * into;
+      weight[i] += bears;
+      mu[i] += bears * muStatic;
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const RigidBody& body = world.bodies[i];
+    if (body.immovable || body.friction.frictionless()) continue;
+    const double length = pushed[i].norm();
+    if (!(length > 0.0)) {
+      support[i].slides = true;
+      continue;
+    }
+    const Vec3 N = pushed[i] / length;
+    const double into = -down.dot(N);               // gravity's part into the supports
+    const double along = (down + into * N).norm();  // and along their plane
+    support[i].slides = along > (mu[i] / weight[i]) * into;
+  }
+}
+
 DampingStats dampenObjects(World& world, double dt, const std::vector<char>& touched,
                            const DampingParams& params, Integrator integrator,
                            const std::vector<SupportVerdict>& support, SavedPoses* before) {
@@ -150,6 +203,8 @@ DampingStats dampenObjects(World& world, double dt, const std::vector<char>& tou
     if (o.immovable || !touched[i] || !isYAxisAligned(o, params.alignedAngleDeg)) continue;
     // DEVIATION(DAMPENOBJECTS L23): with the support test, only over its support (as L6-L21).
     if (params.supportTest && !support.empty() && !support[i].over) continue;
+    // DEVIATION(DAMPENOBJECTS L23): nor one its Coulomb friction cannot hold.
+    if (!support.empty() && support[i].slides) continue;
     const double ell = o.halfExtents.minCoeff();
     const double deltaPosition = (o.s.x - old[i].x).norm();
     const double deltaRotation = quaternionDistance(o.s.q, old[i].q);

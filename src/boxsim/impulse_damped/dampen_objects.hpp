@@ -29,6 +29,30 @@ bool isYAxisAligned(const RigidBody& body, double angleDeg);
 /// with a face perpendicular to y (\alg{DAMPENOBJECTS L10} tiltTowardsYAxis).
 void tiltTowardsYAxis(RigidBody& body, double maxAngle);
 
+/// Sets SupportVerdict::slides, in `support` (one verdict per body; resized to the world's
+/// bodies, new verdicts over and level), for every movable body with Coulomb friction that its
+/// friction cannot hold against gravity where it lies: with N the sum of the unit normals n of
+/// its contacts in `contacts` that push it against gravity (each pointing into it), each
+/// weighted by its part against gravity, -n · ĝ (a side contact bears no weight), and μs the
+/// static coefficients of those contacts (combinedFriction) averaged with the same weights, it
+/// slides when gravity's part along the plane of N exceeds μs times its part into N, or when it
+/// has no such contact.
+/// Frictionless bodies are never marked: the thesis' damping stands in for their friction
+/// (\thesis{§5.2}).
+/// DEVIATION(DAMPENOBJECTS L6-L28): \alg{A.2} has no Coulomb friction; its rests hold a body
+/// whose velocity is small, which for a box on a plank steeper than atan μ is every step (a step
+/// adds g (sin θ - μ cos θ) Δt, about 3 cm/s at 35° and μ = 0.5), so friction would act as if
+/// its cone had no bound. A body its friction cannot hold is not rested.
+/// `lists`, when given, holds the per-body sums between calls, so that a caller that asks every
+/// step allocates nothing once they have grown to the world.
+struct FrictionSlideLists {
+  std::vector<Vec3> pushed;    ///< per body, the weighted sum of its supports' normals
+  std::vector<double> weight;  ///< per body, the sum of the weights
+  std::vector<double> mu;      ///< per body, the weighted sum of the supports' μs
+};
+void markFrictionSlides(const World& world, const std::vector<ContactManifold>& contacts,
+                        std::vector<SupportVerdict>& support, FrictionSlideLists* lists = nullptr);
+
 /// Scales the momenta of the bodies marked `touched` (one flag per body) as
 /// \alg{DAMPENOBJECTS L1-L21}, with the thresholds of `params` turned into momenta for each body:
 /// velocities in units of g Δt times the mass, angular velocities in units of g Δt / ℓ times (2/3)
@@ -36,7 +60,8 @@ void tiltTowardsYAxis(RigidBody& body, double maxAngle);
 /// bodies.
 /// `support` (one verdict per body, centreOverSupport, or empty: A.2 as written) says which
 /// bodies stand over their support: with DampingParams::supportTest, L6-L21 act only on those,
-/// and L10 only on those that lie on top faces of one level (SupportVerdict::level).
+/// and L10 only on those that lie on top faces of one level (SupportVerdict::level). Whatever
+/// DampingParams::supportTest says, L6-L21 leave alone a body marked SupportVerdict::slides.
 void dampMomenta(World& world, double dt, const std::vector<char>& touched,
                  const DampingParams& params, DampingStats* stats = nullptr,
                  const std::vector<SupportVerdict>& support = {});

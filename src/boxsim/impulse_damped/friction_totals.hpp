@@ -3,8 +3,13 @@
 /// friction (applyPatchFriction in core/newtonian_impulse.hpp).
 #pragma once
 
+#include <utility>
+#include <vector>
+
 #include "boxsim/core/newtonian_impulse.hpp"
 #include "boxsim/core/pair_table.hpp"
+#include "boxsim/core/world.hpp"
+#include "boxsim/impulse_damped/contact_normal.hpp"
 
 namespace boxsim {
 
@@ -19,8 +24,38 @@ class FrictionTotals {
   /// Forgets every pair: called as a step begins.
   void clear() { sums_.clear(); }
 
+  /// The load each movable body puts on each of its supports among the frictional `contacts`
+  /// of a pass of damped integration (`stable`: its geometric stability flags, one per body;
+  /// empty: not damped integration, no shares): its weight m |g| Δt (N s) plus the shares of the
+  /// bodies it carries, spread over the contacts whose normal pushes it against gravity in
+  /// proportion to how far each normal rises (n · up: a side contact carries nothing), worked
+  /// out from the top down. Under damped integration the impulses say little of
+  /// a resting body's load: none between two movable bodies, where the gravity trick
+  /// (\alg{COLLIDE L1-L6}) adds g Δt to both and DAMPENOBJECTS (L6-L9) zeroes the vertical
+  /// momentum a resting box would bring; and on the ground only a part of it in the passes
+  /// before the last, where the contact passes' restitution climbs from -1 to 0 and a
+  /// geometrically stable body's vertical momentum is reset after every impulse
+  /// (\alg{COLLIDE L11-L14}).
+  void shareWeights(const World& world, const std::vector<ImpulseContact>& contacts,
+                    const std::vector<char>& stable, double dt);
+  /// The least friction budget (N s) of `contact` for the body it supports: the contact's part of
+  /// that body's load (shareWeights) times |n · up|, the part pressed along the normal
+  /// (m g cos θ Δt for a box alone on a plank tilted by θ); 0 when it supports none.
+  double supportShare(const ImpulseContact& contact) const;
+
  private:
   PairTable<FrictionSum> sums_;
+  /// A contact that carries a body: the body, the one under it, and how far its normal rises.
+  struct Edge {
+    int carried;  ///< body index
+    int under;    ///< body index
+    double rise;  ///< |n · up|
+  };
+  std::vector<double> share_;   ///< per body, N s: its load per unit rise of its supports
+  std::vector<double> rises_;   ///< per body: the sum of its supports' rises
+  std::vector<int> shared_;     ///< the bodies whose share_ is set
+  std::vector<Edge> edges_;     ///< the carrying contacts, by carried body
+  Vec3 up_ = Vec3::UnitY();     ///< against gravity
 };
 
 }  // namespace boxsim
