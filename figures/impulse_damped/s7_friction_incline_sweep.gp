@@ -14,9 +14,9 @@ do for [kind in "png svg"] {
   set xlabel "incline (degrees)"
   set ylabel "distance down the slope after 2 s (m)"
   set xrange [0:60]
-  set key top left
+  set key top left Left reverse
   set arrow from 26.565,graph 0 to 26.565,graph 1 nohead dt 3 lc rgb "#7f7f7f"
-  set label "atan μ" at 27.2,graph 0.92 tc rgb "#7f7f7f"
+  set label "atan μ = 26.6°" at 27.2,graph 0.45 tc rgb "#7f7f7f"
   plot data using 1:2 with lines lw 3 lc rgb "#bbbbbb" title "Coulomb", \
        data using 1:3 with points pt 7 ps 1.1 lc rgb "#9467bd" title "plain impulse step", \
        data using 1:4 with points pt 6 ps 1.6 lc rgb "#2ca02c" title "damped integration (damping and sleeping on)"
