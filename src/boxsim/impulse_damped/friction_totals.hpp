@@ -42,6 +42,8 @@ class FrictionTotals {
   /// that body's load (shareWeights) times |n · up|, the part pressed along the normal
   /// (m g cos θ Δt for a box alone on a plank tilted by θ); 0 when it supports none.
   double supportShare(const ImpulseContact& contact) const;
+  /// g Δt (m/s) of the last shareWeights.
+  double restingSpeed() const { return restingSpeed_; }
 
  private:
   PairTable<FrictionSum> sums_;
@@ -56,6 +58,7 @@ class FrictionTotals {
   std::vector<int> shared_;     ///< the bodies whose share_ is set
   std::vector<Edge> edges_;     ///< the carrying contacts, by carried body
   Vec3 up_ = Vec3::UnitY();     ///< against gravity
+  double restingSpeed_ = 0.0;   ///< m/s, g Δt
 };
 
 }  // namespace boxsim

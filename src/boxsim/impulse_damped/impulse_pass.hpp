@@ -24,9 +24,10 @@ namespace boxsim {
 /// from `totals` (a budget of this impulse alone when `totals` is null: nothing before it).
 /// The pair's budget grows by the normal impulse, or, when `restarted` (a geometrically stable
 /// body's vertical momentum is reset after every COLLIDE, \alg{COLLIDE L11-L14}, so each
-/// pass's impulse is a new estimate of the same support), becomes the largest of them; a
-/// restarted contact's friction also has at least its part of the load of the body it carries
-/// (FrictionTotals::supportShare, from the pass' FrictionTotals::shareWeights).
+/// pass's impulse is a new estimate of the same support), becomes the largest of them. A
+/// resting contact's friction (restarted, or approaching at no more than g Δt and not parting)
+/// also has at least its part of the load of the body it carries (FrictionTotals::supportShare,
+/// from the pass' FrictionTotals::shareWeights).
 /// \return the normal impulse, N s.
 double contactImpulse(RigidBody& a, RigidBody& b, const ImpulseContact& contact, double restitution,
                       FrictionTotals* totals, bool restarted = false);
