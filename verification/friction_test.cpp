@@ -458,6 +458,16 @@ TEST_CASE("boxsim run, damped integration as it runs by default, on Coulomb's sc
     CHECK(travelled(t, 1) == Approx(v0 * v0 / (2.0 * kMu * kG)).epsilon(0.02));
     CHECK(largestEnergyRise(t) < 1e-9);
   }
+  SECTION("a cube pushed along the top of a resting slab slides on it at mu g and the slab stays") {
+    // The slab is wide: on a cube of its own size the pushed cube would tip over the front edge
+    // once it had slid μ h / 2 = 0.25 m, where its centre of pressure would have to lie beyond it.
+    const Trajectory t = runCoulombScene("pushed.json");
+    const double v0 = 2.0;
+    CHECK(travelled(t, 2) == Approx(v0 * v0 / (2.0 * kMu * kG) - 0.5 * v0 * dt).epsilon(0.02));
+    CHECK(travelled(t, 1) < 1e-3);
+    CHECK(t.frames.back().q[2].angularDistance(t.frames.front().q[2]) < 1e-6);
+    CHECK(largestEnergyRise(t) < 1e-9);
+  }
   SECTION("a cube spinning at 10 rad/s stops at 6 mu g rho rad/s^2") {
     const Trajectory t = runCoulombScene("spin.json");
     const double rho = (std::sqrt(2.0) + std::log(1.0 + std::sqrt(2.0))) / 6.0;
