@@ -109,7 +109,8 @@ std::vector<ContactManifold> refindContacts(const World& world, double margin,
 /// grown to the scene, a call allocates nothing.
 struct BroadPhaseLists {
   SweepAndPrune sweep;                     ///< the sweep's own lists
-  std::vector<Vec3> lo, hi;                ///< per body, its bounds, m
+  std::vector<Vec3> lo;                    ///< per body, the lower corner of its bounds, m
+  std::vector<Vec3> hi;                    ///< per body, the upper corner of its bounds, m
   std::vector<std::pair<int, int>> pairs;  ///< the pairs found
   std::vector<int> movedBodies;            ///< the bodies flagged moved
 };

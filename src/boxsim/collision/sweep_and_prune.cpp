@@ -299,14 +299,17 @@ std::vector<std::pair<int, int>> sweepAndPrunePairs(const World& world,
   return pairs;
 }
 
+/// The working lists of SweepAndPrune::pairs, kept for their room.
 struct SweepAndPrune::Lists {
-  std::vector<int> direct, swept;
-  std::vector<char> isDirect;
-  std::vector<Interval> intervals;
-  std::vector<Vec3> sortedLo, sortedHi;
-  Grid grid;
-  std::vector<std::pair<int, int>> sortedPairs;
-  std::vector<std::size_t> start;
+  std::vector<int> direct;                       ///< bodies tested directly
+  std::vector<int> swept;                        ///< bodies swept or gridded
+  std::vector<char> isDirect;                    ///< per body: tested directly
+  std::vector<Interval> intervals;               ///< the sweep's intervals
+  std::vector<Vec3> sortedLo;                    ///< the bounds in sweep order, m
+  std::vector<Vec3> sortedHi;                    ///< the bounds in sweep order, m
+  Grid grid;                                     ///< the uniform grid and its lists
+  std::vector<std::pair<int, int>> sortedPairs;  ///< sortPairs' second list
+  std::vector<std::size_t> start;                ///< sortPairs' counts
 };
 
 SweepAndPrune::SweepAndPrune() : lists_(std::make_unique<Lists>()) {}

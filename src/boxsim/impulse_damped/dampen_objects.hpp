@@ -29,6 +29,14 @@ bool isYAxisAligned(const RigidBody& body, double angleDeg);
 /// with a face perpendicular to y (\alg{DAMPENOBJECTS L10} tiltTowardsYAxis).
 void tiltTowardsYAxis(RigidBody& body, double maxAngle);
 
+/// The per-body sums of markFrictionSlides, kept by a caller that asks every step so that it
+/// allocates nothing once they have grown to the world.
+struct FrictionSlideLists {
+  std::vector<Vec3> pushed;    ///< per body, the weighted sum of its supports' normals
+  std::vector<double> weight;  ///< per body, the sum of the weights
+  std::vector<double> mu;      ///< per body, the weighted sum of the supports' μs
+};
+
 /// Sets SupportVerdict::slides, in `support` (one verdict per body; resized to the world's
 /// bodies, new verdicts over and level), for every movable body with Coulomb friction that its
 /// friction cannot hold against gravity where it lies: with N the sum of the unit normals n of
@@ -43,13 +51,7 @@ void tiltTowardsYAxis(RigidBody& body, double maxAngle);
 /// whose velocity is small, which for a box on a plank steeper than atan μ is every step (a step
 /// adds g (sin θ - μ cos θ) Δt, about 3 cm/s at 35° and μ = 0.5), so friction would act as if
 /// its cone had no bound. A body its friction cannot hold is not rested.
-/// `lists`, when given, holds the per-body sums between calls, so that a caller that asks every
-/// step allocates nothing once they have grown to the world.
-struct FrictionSlideLists {
-  std::vector<Vec3> pushed;    ///< per body, the weighted sum of its supports' normals
-  std::vector<double> weight;  ///< per body, the sum of the weights
-  std::vector<double> mu;      ///< per body, the weighted sum of the supports' μs
-};
+/// `lists`, when given, holds the per-body sums between calls.
 void markFrictionSlides(const World& world, const std::vector<ContactManifold>& contacts,
                         std::vector<SupportVerdict>& support, FrictionSlideLists* lists = nullptr);
 
