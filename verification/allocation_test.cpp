@@ -4,6 +4,7 @@
 // to; nothing else in it allocates during the counted steps.
 #include <catch2/catch.hpp>
 
+#include <cstddef>
 #include <cstdlib>
 #include <new>
 #include <string>
@@ -16,13 +17,47 @@ bool counting = false;  // single-threaded: the steps run on the test's thread
 long allocations = 0;
 }  // namespace
 
-void* operator new(std::size_t size) {
+// Every form of the global operator new and delete is replaced, in matching pairs (malloc and
+// free, aligned_alloc and free), so that no library's new meets another's delete (AddressSanitizer
+// checks that they match).
+namespace {
+void* counted(std::size_t size, std::size_t alignment = 0) {
   if (counting) ++allocations;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  if (size == 0) size = 1;
+  if (alignment > alignof(std::max_align_t))
+    return std::aligned_alloc(alignment, (size + alignment - 1) / alignment * alignment);
+  return std::malloc(size);
+}
+}  // namespace
+
+void* operator new(std::size_t size) {
+  if (void* p = counted(size)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t size) {
+  if (void* p = counted(size)) return p;
+  throw std::bad_alloc();
+}
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept { return counted(size); }
+void* operator new[](std::size_t size, const std::nothrow_t&) noexcept { return counted(size); }
+void* operator new(std::size_t size, std::align_val_t alignment) {
+  if (void* p = counted(size, static_cast<std::size_t>(alignment))) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t size, std::align_val_t alignment) {
+  if (void* p = counted(size, static_cast<std::size_t>(alignment))) return p;
   throw std::bad_alloc();
 }
 void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
 
 using namespace boxsim;
 
