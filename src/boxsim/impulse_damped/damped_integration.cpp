@@ -163,6 +163,7 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   }
   // Friction's budget is the normal impulse of this step (applyPatchFriction).
   frictionTotals_.clear();
+  const bool friction = hasFriction(world);
   // The narrow phases so far, for the profile's count of this step's.
   const long passTestsBefore = gathering_.passNarrowPhases();
   const long testsBefore = gathering_.kept().tests() + passTestsBefore;
@@ -189,7 +190,6 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
     // changed since) a narrow phase of its own with the same margin.
     static const std::vector<SupportVerdict> asWritten;
     const std::vector<SupportVerdict>* support = &asWritten;
-    const bool friction = hasFriction(world);
     if (params_.damping.supportTest || friction) {
       const double restingMargin = restingContactMargin(world, margin, dt);
       if (!posesUnchanged(world, lastPoses_))
@@ -217,7 +217,7 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   // Kept as the next step's starting contacts, where the support test reads them.
   fixContacts(world, dt, margin);
   const std::vector<ContactManifold>& contacts = lastContacts_;
-  if (params_.damping.supportTest || hasFriction(world)) {
+  if (params_.damping.supportTest || friction) {
     lastPoses_.resize(n);
     for (std::size_t i = 0; i < n; ++i) lastPoses_[i] = {world.bodies[i].s.x, world.bodies[i].s.q};
   }
