@@ -287,7 +287,7 @@ TEST_CASE("Damping colliding bodies too brings the clump of Fig. 6.7 to rest, A.
 }
 
 TEST_CASE("Of damped integration's techniques, damping alone stops the chatter of the settled "
-          "die and pyramid: with each of the others off they stay exactly still",
+          "die and pyramid, which stay exactly still with each of the others off",
           "[impulse_damped][chatter][ablation]") {
   // The ablation of figure s5_3_ablation, on the die (6-8 s) and the base-10 pyramid before the
   // shot (2-5 s): damped integration with one technique off at a time.

@@ -381,7 +381,7 @@ TEST_CASE("Chatter detection puts the clump's chattering cubes to sleep: the hea
 }
 
 TEST_CASE("Chatter detection never fires on a box tipping off an edge, a box falling or one "
-          "drifting in space: those runs are bit for bit the runs without it",
+          "drifting in space, whose runs are bit for bit the runs without it",
           "[impulse_damped][sleeping][chatter]") {
   const auto both = [](World world, int steps) {
     DampedIntegrationParams with;
