@@ -46,7 +46,7 @@ struct FrictionSlideLists {
 /// slides when gravity's part along the plane of N exceeds μs times its part into N, or when it
 /// has no such contact or only frictionless ones (which hold nothing along them, whatever pulls
 /// it: a box dragged by the friction of one sliding on it), and so does every body resting on
-/// one that slides.
+/// a supported one that slides.
 /// Frictionless bodies are never marked: the thesis' damping stands in for their friction
 /// (\thesis{§5.2}).
 /// DEVIATION(DAMPENOBJECTS L6-L28): \alg{A.2} has no Coulomb friction; its rests hold a body
