@@ -38,7 +38,9 @@ void FrictionTotals::shareWeights(const World& world, const std::vector<ImpulseC
   if (shared_.empty()) return;
   // From the top down, each body's load (its weight and what the bodies it carries put on it)
   // is spread over its supports and passed on to the movable ones under it.
-  const auto height = [&](int i) { return up_.dot(world.bodies[i].s.x); };
+  height_.resize(n);
+  for (int i : shared_) height_[static_cast<std::size_t>(i)] = up_.dot(world.bodies[i].s.x);
+  const auto height = [&](int i) { return height_[static_cast<std::size_t>(i)]; };
   std::sort(shared_.begin(), shared_.end(),
             [&](int i, int j) { return height(i) > height(j) || (height(i) == height(j) && i < j); });
   std::sort(edges_.begin(), edges_.end(), [](const Edge& x, const Edge& y) {

@@ -56,6 +56,7 @@ class FrictionTotals {
   std::vector<double> share_;   ///< per body, N s: its load per unit rise of its supports
   std::vector<double> rises_;   ///< per body: the sum of its supports' rises
   std::vector<int> shared_;     ///< the bodies whose share_ is set
+  std::vector<double> height_;  ///< per body of shared_, m: its centre's height along up_
   std::vector<Edge> edges_;     ///< the carrying contacts, by carried body
   Vec3 up_ = Vec3::UnitY();     ///< against gravity
   double restingSpeed_ = 0.0;   ///< m/s, g Δt
