@@ -8,14 +8,13 @@
 namespace boxsim {
 
 void FrictionTotals::shareWeights(const World& world, const std::vector<ImpulseContact>& contacts,
-                                  const std::vector<char>& stable, double dt) {
+                                  double dt) {
   for (int i : shared_) {
     share_[static_cast<std::size_t>(i)] = 0.0;
     rises_[static_cast<std::size_t>(i)] = 0.0;
   }
   shared_.clear();
   edges_.clear();
-  if (stable.empty()) return;
   const std::size_t n = world.bodies.size();
   share_.resize(n, 0.0);
   rises_.resize(n, 0.0);

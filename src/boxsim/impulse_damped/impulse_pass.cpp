@@ -136,8 +136,8 @@ PassResult impulsePass(World& world, double dt, double restitution, GravityMode 
   PassResult result;
   result.contacts = static_cast<int>(contacts.size());
   const CollideCall call{restitution, impulseGravity, dt};
-  // The weight stable bodies put on their frictional supports, friction's budget for them.
-  if (totals) totals->shareWeights(world, contacts, stable, dt);
+  // The weight bodies put on their frictional supports, friction's least budget for them.
+  if (totals) totals->shareWeights(world, contacts, dt);
   // The pass' contacts are those of the islands still active (contact_islands.hpp).
   ContactIslands* islands = settling == IslandSettling::Never ? nullptr : gathering.islands();
   for (ImpulseContact& c : contacts) {
