@@ -176,7 +176,7 @@ void markFrictionSlides(const World& world, const std::vector<ContactManifold>& 
     const Vec3 N = pushed[i] / length;
     const double into = -down.dot(N);               // gravity's part into the supports
     const double along = (down + into * N).norm();  // and along their plane
-    support[i].slides = support[i].slides || along > (mu[i] / weight[i]) * into;
+    support[i].slides = along > (mu[i] / weight[i]) * into;
   }
   // A body that rests on one that slides is not held where it lies either: its rests would keep
   // it still while its support moves away under it, and its friction would then hold the support
