@@ -86,6 +86,12 @@ int World::movableCount() const {
   return n;
 }
 
+bool World::hasFriction() const {
+  for (const RigidBody& b : bodies)
+    if (!b.friction.frictionless()) return true;
+  return false;
+}
+
 int addBox(World& world, const std::string& name, const Vec3& halfExtents, const Vec3& centre,
            const Quat& q) {
   RigidBody b = RigidBody::box(halfExtents, 1.0);

@@ -90,6 +90,8 @@ class World {
   Vec3 linearMomentum() const;
   /// Number of movable bodies.
   int movableCount() const;
+  /// Whether some body has Coulomb friction (RigidBody::friction not frictionless).
+  bool hasFriction() const;
 };
 
 /// Adds a box of 1 kg named `name` with the given half extents (m) at `centre` (m), turned by

@@ -114,12 +114,6 @@ bool posesUnchanged(const World& world, const std::vector<std::pair<Vec3, Quat>>
   return true;
 }
 
-/// Whether some body of `world` has Coulomb friction.
-bool hasFriction(const World& world) {
-  return std::any_of(world.bodies.begin(), world.bodies.end(),
-                     [](const RigidBody& body) { return !body.friction.frictionless(); });
-}
-
 /// Adds the wall-clock time of each stage of a step to its slot of a profile, if there is one.
 class StageClock {
  public:
@@ -163,7 +157,9 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   }
   // Friction's budget is the normal impulse of this step (applyPatchFriction).
   frictionTotals_.clear();
-  const bool friction = hasFriction(world);
+  const bool friction = world.hasFriction();
+  // A frictionless world keeps no friction sums: contactImpulse would not read them.
+  FrictionTotals* const totals = friction ? &frictionTotals_ : nullptr;
   // The narrow phases so far, for the profile's count of this step's.
   const long passTestsBefore = gathering_.passNarrowPhases();
   const long testsBefore = gathering_.kept().tests() + passTestsBefore;
@@ -175,10 +171,10 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   gathering_.beginStep(world, dt, GravityMode::VelocityPlusGravity, margin);
   clock.lap(&DampedStepProfile::stepContacts);
   // DAMPEDINTEGRATION L1: RESOLVECOLLISIONS.
-  resolveCollisions(world, dt, margin, touched, stats);
+  resolveCollisions(world, dt, margin, touched, totals, stats);
   clock.lap(&DampedStepProfile::collisionPasses);
   // DAMPEDINTEGRATION L2: RESOLVECONTACTS.
-  resolveContacts(world, dt, margin, touched, stats);
+  resolveContacts(world, dt, margin, touched, totals, stats);
   clock.lap(&DampedStepProfile::contactPasses);
   // DAMPEDINTEGRATION L3: IntegrateObjectVelocities (sleeping bodies stand immovable and are
   // skipped).
@@ -243,7 +239,8 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
 }
 
 void DampedIntegrationStepper::resolveCollisions(World& world, double dt, double margin,
-                                                 std::vector<char>& touched, StepStats& stats) {
+                                                 std::vector<char>& touched, FrictionTotals* totals,
+                                                 StepStats& stats) {
   // The hook runs only when needed, so with both techniques off the step is A.2 as written.
   const bool hooked = params_.sleep.enabled || params_.plausibility.enabled;
   const BeforeCollide hook = [this](World& w, ImpulseContact& c, const CollideCall& call) {
@@ -258,7 +255,7 @@ void DampedIntegrationStepper::resolveCollisions(World& world, double dt, double
         impulsePass(world, dt, world.restitution, GravityMode::VelocityPlusGravity,
                     GravityMode::VelocityNoGravity, margin, gathering_, stable_,
                     params_.dampCollidingBodies ? &touched : nullptr,
-                    hooked ? hook : BeforeCollide{}, &frictionTotals_,
+                    hooked ? hook : BeforeCollide{}, totals,
                     // Islands whose passes changed nothing sit out the rest of the loop.
                     params_.islandSettling ? IslandSettling::Unchanged : IslandSettling::Never);
     stats.events += pass.impulses;
@@ -271,7 +268,8 @@ void DampedIntegrationStepper::resolveCollisions(World& world, double dt, double
 }
 
 void DampedIntegrationStepper::resolveContacts(World& world, double dt, double margin,
-                                               std::vector<char>& touched, StepStats& stats) {
+                                               std::vector<char>& touched, FrictionTotals* totals,
+                                               StepStats& stats) {
   const BeforeCollide hook = [this](World& w, ImpulseContact& c, const CollideCall& call) {
     sleeping_.beforeCollide(w, c, call);
   };
@@ -282,7 +280,7 @@ void DampedIntegrationStepper::resolveContacts(World& world, double dt, double m
     const PassResult pass = impulsePass(
         world, dt, -1.0 + static_cast<double>(i) / iterations, GravityMode::VelocityPlusGravity,
         GravityMode::VelocityPlusGravity, margin, gathering_, stable_, &touched,
-        params_.sleep.enabled ? hook : BeforeCollide{}, &frictionTotals_,
+        params_.sleep.enabled ? hook : BeforeCollide{}, totals,
         params_.islandSettling ? IslandSettling::Unapproached : IslandSettling::Never);
     stats.events += pass.impulses;
     ++stats.passes;

@@ -143,13 +143,15 @@ class DampedIntegrationStepper final : public Stepper {
   StepStats advance(World& world, double dt);
   /// \alg{RESOLVECOLLISIONS} (DAMPEDINTEGRATION L1): the collision passes, with high-speed
   /// collisions perturbed (§4.2); marks in `touched` (one flag per body) the bodies that take
-  /// part when dampCollidingBodies is on, and counts impulses and passes in `stats`.
+  /// part when dampCollidingBodies is on, and counts impulses and passes in `stats`; friction
+  /// keeps its sums in `totals` (nullptr in a frictionless world).
   void resolveCollisions(World& world, double dt, double margin, std::vector<char>& touched,
-                         StepStats& stats);
+                         FrictionTotals* totals, StepStats& stats);
   /// \alg{RESOLVECONTACTS} (DAMPEDINTEGRATION L2): the contact passes; marks in `touched` the
-  /// bodies that take part, and counts impulses and passes in `stats`.
+  /// bodies that take part, and counts impulses and passes in `stats`; friction's sums in
+  /// `totals` as above.
   void resolveContacts(World& world, double dt, double margin, std::vector<char>& touched,
-                       StepStats& stats);
+                       FrictionTotals* totals, StepStats& stats);
   /// \alg{FIXCONTACTCONSTRAINTS} (DAMPEDINTEGRATION L5), when on, and the contacts after it
   /// within the resting-contact margin, for SETGEOMETRICALLYSTABLE and sleeping, into
   /// lastContacts_.

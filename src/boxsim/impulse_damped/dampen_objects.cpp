@@ -137,12 +137,10 @@ void markFrictionSlides(const World& world, const std::vector<ContactManifold>& 
   const double g = world.gravity.norm();
   if (!(g > 0.0)) return;
   const Vec3 down = world.gravity / g;
+  if (!world.hasFriction()) return;
   // Per body: the sum of the unit normals of its supports (into it), each weighted by how much
   // of gravity it can bear (its component against gravity: a side contact bears none), and
   // their μs averaged with the same weights.
-  bool anyFriction = false;
-  for (const RigidBody& body : world.bodies) anyFriction = anyFriction || !body.friction.frictionless();
-  if (!anyFriction) return;
   FrictionSlideLists own;
   FrictionSlideLists& sums = lists ? *lists : own;
   std::vector<Vec3>& pushed = sums.pushed;

@@ -26,12 +26,14 @@ StepStats ImpulseStepper::step(World& world, double dt) {
   StepStats stats;
   // Friction's budget is the normal impulse of this step (applyPatchFriction).
   frictionTotals_.clear();
+  // A frictionless world keeps no friction sums: contactImpulse would not read them.
+  FrictionTotals* const totals = world.hasFriction() ? &frictionTotals_ : nullptr;
   const double margin = params_.impulse.contactMargin * smallestHalfExtent(world);
   // 1. Collisions, at positions predicted with the velocities as they are.
   for (int i = 0; i < params_.impulse.collisionIterations; ++i)
     stats.events += impulsePass(world, dt, world.restitution, GravityMode::VelocityNoGravity,
                                 GravityMode::VelocityNoGravity, margin, gathering_, {}, nullptr,
-                                {}, &frictionTotals_)
+                                {}, totals)
                         .impulses;
   // 2. Velocities.
   integrateVelocities(world, dt);
@@ -40,10 +42,10 @@ StepStats ImpulseStepper::step(World& world, double dt) {
   for (int i = 1; i <= n; ++i)
     stats.events += impulsePass(world, dt, -1.0 + static_cast<double>(i) / n,
                                 GravityMode::VelocityNoGravity, GravityMode::VelocityNoGravity,
-                                margin, gathering_, {}, nullptr, {}, &frictionTotals_)
+                                margin, gathering_, {}, nullptr, {}, totals)
                         .impulses;
   // 4. Shock propagation.
-  if (params_.shockPropagation) stats.events += propagateShock(world, dt, margin, gathering_, &frictionTotals_);
+  if (params_.shockPropagation) stats.events += propagateShock(world, dt, margin, gathering_, totals);
   // 5. Positions.
   predictPositions(world, dt, Vec3::Zero(), params_.impulse.integrator);
   gathering_.endStep();
