@@ -67,11 +67,19 @@ bool SlowPairCache::mayTouch(const StepBodies& bodies, const PairReach& reach, d
   // A point's depth changes in the pass by n · (d_a - d_b) (predictedContact), at most
   // Δt |v'_a - v'_b| + Δt |ω| |r| + Δt² |ω|² |r| for each body; the allowance relative to the
   // terms, far above their rounding, keeps the answer what the computed depths would give.
+  // The answer is true whenever deepest + Δt |v'_a - v'_b| + spin comes within the margin, up to
+  // an allowance of 1e-9 of the terms (far above their rounding): the linear part is compared in
+  // squares, without the square root of its norm, and may answer true a little more often than
+  // the depths would, never less.
   const double wa = bodies.passSpin[reach.a], wb = bodies.passSpin[reach.b];
-  const double bound = dt * (bodies.passVelocity[reach.a] - bodies.passVelocity[reach.b]).norm() +
-                       dt * (wa * reach.leverA + wb * reach.leverB) +
-                       dt * dt * (wa * wa * reach.leverA + wb * wb * reach.leverB);
-  return reach.deepest + bound + 1e-12 * (std::abs(reach.deepest) + bound) > -margin;
+  const double spin = dt * (wa * reach.leverA + wb * reach.leverB) +
+                      dt * dt * (wa * wa * reach.leverA + wb * wb * reach.leverB);
+  const double need = -margin - reach.deepest - spin;  // what the linear part must cover
+  const double allowance = 1e-9 * (std::abs(reach.deepest) + margin + spin);
+  if (need <= allowance) return true;
+  const double linear = need - allowance;
+  return dt * dt * (bodies.passVelocity[reach.a] - bodies.passVelocity[reach.b]).squaredNorm() >
+         linear * linear;
 }
 
 bool SlowPairCache::predictedContact(const World& world, const CachedPair& pair,
