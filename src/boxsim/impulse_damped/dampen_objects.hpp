@@ -5,6 +5,7 @@
 /// would barely move stays where it was.
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include "boxsim/core/world.hpp"
@@ -35,6 +36,9 @@ struct FrictionSlideLists {
   std::vector<Vec3> pushed;    ///< per body, the weighted sum of its supports' normals
   std::vector<double> weight;  ///< per body, the sum of the weights
   std::vector<double> mu;      ///< per body, the weighted sum of the supports' μs
+  /// (body, the body under it) for each contact that pushes a movable body against gravity
+  /// and is made by a movable one, in contact order.
+  std::vector<std::pair<int, int>> carried;
 };
 
 /// Sets SupportVerdict::slides, in `support` (one verdict per body; resized to the world's
