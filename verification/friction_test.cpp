@@ -151,7 +151,7 @@ TEST_CASE("Damped integration as it runs by default, damping and sleeping on, ob
         Approx(v0 * v0 / (2.0 * kMu * kG) - 0.5 * v0 * kDt).epsilon(0.01));
 }
 
-TEST_CASE("A frictionless world is damped as A.2 writes it: no body is marked as sliding",
+TEST_CASE("A frictionless world is damped as A.2 writes it: no body is marked as sliding or held",
           "[friction][impulse_damped]") {
   // The thesis' damping stands in for friction (§5.2): Coulomb's cone bounds the rests only
   // of bodies with friction.
@@ -160,13 +160,19 @@ TEST_CASE("A frictionless world is damped as A.2 writes it: no body is marked as
   std::vector<SupportVerdict> verdicts;
   markFrictionSlides(s.world, contacts, verdicts);
   REQUIRE(verdicts.size() == s.world.bodies.size());
-  for (const SupportVerdict& v : verdicts) CHECK_FALSE(v.slides);
+  for (const SupportVerdict& v : verdicts) {
+    CHECK_FALSE(v.slides);
+    CHECK_FALSE(v.held);
+  }
+  // A box that slides is not held; one inside its cone, its centre over its base, is.
   Incline rough = incline(35.0, {kMu, kMu});
   markFrictionSlides(rough.world, findContacts(rough.world, 1e-3), verdicts);
   CHECK(verdicts[static_cast<std::size_t>(rough.box)].slides);
+  CHECK_FALSE(verdicts[static_cast<std::size_t>(rough.box)].held);
   Incline held = incline(20.0, {kMu, kMu});
   markFrictionSlides(held.world, findContacts(held.world, 1e-3), verdicts);
   CHECK_FALSE(verdicts[static_cast<std::size_t>(held.box)].slides);
+  CHECK(verdicts[static_cast<std::size_t>(held.box)].held);
 }
 
 TEST_CASE("A box sliding on the ground stops after v0 over mu g seconds, as Coulomb friction predicts",
@@ -424,7 +430,7 @@ double largestEnergyRise(const Trajectory& t, bool potential = true) {
 }  // namespace
 
 TEST_CASE("boxsim run, damped integration as it runs by default, on Coulomb's scene files "
-          "(inclines, stacks on an incline, a slide, a drag and a spin)",
+          "(inclines, stacks on an incline, towers on an incline, a slide, a drag and a spin)",
           "[friction][impulse_damped][closed_form][cli]") {
   const double dt = 1.0 / 60.0;
   const int n = 120;
@@ -467,6 +473,23 @@ TEST_CASE("boxsim run, damped integration as it runs by default, on Coulomb's sc
       CHECK(travelled(slid, 2) == Approx(stepped(30.0)).epsilon(0.02));
       CHECK(largestEnergyRise(slid) < 1e-9);
     }
+  }
+  SECTION("five cubes stacked on a 5 degree plank stand still and sleep, on a 20 degree one they do not") {
+    // Coulomb holds every box at both angles (tan θ < μ). At 5° the stack's centre of mass lies
+    // over its lowest box's base, and nothing may move: before SupportVerdict::held the boxes
+    // ended every step falling slowly (the passes do not settle a stack of five), and
+    // FIXCONTACTCONSTRAINTS' lift along the tilted normals walked them down the slope, 13 mm in
+    // 2 s, never asleep.
+    const Trajectory held = runCoulombScene("tower5_5.json");
+    for (int box = 1; box <= 5; ++box) {
+      INFO("box " << box);
+      CHECK(travelled(held, box) < 1e-3);
+    }
+    CHECK(held.frames.back().kinetic == 0.0);
+    // At 20° the centre of mass of the stack lies beyond the lowest box's downhill edge
+    // (tan 20° > 1/5): nothing may hold it still (measured: the top box 0.33 m in 2 s).
+    const Trajectory tips = runCoulombScene("tower5_20.json");
+    CHECK(travelled(tips, 5) > 0.1);
   }
   SECTION("a cube sliding from 5 m/s stops after v0^2 / (2 mu g)") {
     const Trajectory t = runCoulombScene("slide.json");

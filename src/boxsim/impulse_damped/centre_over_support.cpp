@@ -88,26 +88,6 @@ Polygon contactPatch(const LevelFace& bottom, const LevelFace& top, double band)
   return patch;
 }
 
-/// True when c lies in the convex hull of the `count` points at `points` (sorted in place), or
-/// within `tolerance` (m) of it; `hull` has room for 2 count points.
-bool overHull(Vec2* points, std::size_t count, Vec2* hull, const Vec2& c, double tolerance) {
-  const std::size_t size = convexHullXZ(points, count, hull);
-  if (size >= 3) {
-    for (std::size_t k = 0; k < size; ++k) {
-      const Vec2& a = hull[k];
-      const Vec2& b = hull[(k + 1) % size];
-      if (cross2(a, b, c) < -tolerance * (b - a).norm()) return false;
-    }
-    return true;
-  }
-  // A point, or a segment: an edge line or a corner.
-  const Vec2& a = hull[0];
-  const Vec2& b = hull[size - 1];
-  const double length2 = (b - a).squaredNorm();
-  const double t = length2 > 0.0 ? std::clamp((c - a).dot(b - a) / length2, 0.0, 1.0) : 0.0;
-  return (a + t * (b - a) - c).norm() <= tolerance;
-}
-
 /// Whether two manifolds are the same pair with the same normal and points, bit for bit: all
 /// the support test reads of a manifold.
 bool sameManifold(const ContactManifold& x, const ContactManifold& y) {

@@ -50,6 +50,10 @@ struct SupportVerdict {
   /// Coulomb friction cannot hold the body where it lies (markFrictionSlides): DAMPENOBJECTS'
   /// rests (L6-L21) and its snap (L23-L28) leave it alone. Never set in a frictionless world.
   bool slides = false;
+  /// Coulomb friction holds the body and what rests on it where they lie (markFrictionSlides):
+  /// DAMPENOBJECTS' vertical rest (L7-L9) applies to it as to a box lying flat. Never set in a
+  /// frictionless world.
+  bool held = false;
 };
 
 /// For each body of `world` (one verdict per body, in body order), whether its centre of mass

@@ -94,12 +94,23 @@ void dampMomenta(World& world, double dt, const std::vector<char>& touched,
     }
     // DAMPENOBJECTS L6-L10: a box lying nearly flat is turned the last bit flat (L10); if it also
     // barely moves vertically it is resting on a face and loses its vertical velocity (L7-L9).
-    if (yAxisAligned) {
+    // DEVIATION(DAMPENOBJECTS L7-L9): a body its Coulomb friction holds with its load over its
+    // support (SupportVerdict::held) loses a small vertical velocity as an aligned one does,
+    // though it lies tilted (on a slope, or on a tilted box of a heap). The passes leave each box
+    // of a stack some of the g Δt of L3 (the restitution ramp of RESOLVECONTACTS L5 and the gravity
+    // trick cannot settle a stack in one step), so it ends every step falling slowly; FIXCONTACT-
+    // CONSTRAINTS lifts it back along the normal of a tilted support, which walks it down the
+    // slope: three cubes stacked on a plank tilted 5° with μ = 0.5, which Coulomb holds, crept
+    // 19 mm in 8 s and never slept, seven crept 0.28 m in 8 s with the top one reported falling at
+    // 0.4 m/s. Now they stand and sleep after 0.5 s; five on a 20° plank, whose load lies beyond
+    // the lowest box's downhill edge, are not held.
+    const bool held = overSupport && !rates && !support.empty() && support[i].held;
+    if (yAxisAligned || held) {
       if (std::abs(o.s.P.y()) < params.verticalVelocityEps * pUnit) {
         o.s.P.y() = 0.0;
         if (rates) o.s.L *= k3;
       }
-      if (turnFlat) tiltTowardsYAxis(o, params.tiltRateDegPerS * kPi / 180.0 * dt);
+      if (yAxisAligned && turnFlat) tiltTowardsYAxis(o, params.tiltRateDegPerS * kPi / 180.0 * dt);
     }
     // DAMPENOBJECTS L11-L19: component by component.
     // DEVIATION(DAMPENOBJECTS L14): the pseudocode tests ε5 twice, which would zero every component
@@ -129,11 +140,77 @@ void dampMomenta(World& world, double dt, const std::vector<char>& touched,
   }
 }
 
+namespace {
+/// SupportVerdict::held (markFrictionSlides) from the sums markFrictionSlides made; `down` is ĝ.
+void markFrictionHeld(const World& world, const Vec3& down, std::vector<SupportVerdict>& support,
+                      FrictionSlideLists& sums) {
+  const std::size_t n = world.bodies.size();
+  std::vector<double>& load = sums.load;
+  std::vector<Vec3>& moment = sums.moment;
+  load.assign(n, 0.0);
+  moment.assign(n, Vec3::Zero());
+  for (std::size_t i = 0; i < n; ++i) {
+    const RigidBody& body = world.bodies[i];
+    if (body.immovable) continue;
+    load[i] = body.mass;
+    moment[i] = body.mass * body.s.x;
+  }
+  // From the top down: a body passes its load on to the movable bodies under it, in proportion
+  // to what each contact bears, once every body above it has passed it theirs.
+  const auto height = [&](int i) { return -down.dot(world.bodies[i].s.x); };
+  std::vector<FrictionSlideLists::Carried>& carried = sums.carried;
+  std::sort(carried.begin(), carried.end(), [&](const auto& x, const auto& y) {
+    const double hx = height(x.body), hy = height(y.body);
+    return hx > hy || (hx == hy && (x.body < y.body || (x.body == y.body && x.under < y.under)));
+  });
+  const std::vector<double>& weight = sums.weight;
+  for (const FrictionSlideLists::Carried& c : carried) {
+    if (!(height(c.under) < height(c.body))) continue;
+    const double part = c.bears / weight[static_cast<std::size_t>(c.body)];
+    load[static_cast<std::size_t>(c.under)] += part * load[static_cast<std::size_t>(c.body)];
+    moment[static_cast<std::size_t>(c.under)] += part * moment[static_cast<std::size_t>(c.body)];
+  }
+  // Each body's support points together, and the load's centre over their hull.
+  std::vector<std::pair<int, Vec2>>& points = sums.points;
+  std::sort(points.begin(), points.end(), [](const auto& x, const auto& y) {
+    return x.first < y.first ||
+           (x.first == y.first && (x.second.x() < y.second.x() ||
+                                   (x.second.x() == y.second.x() && x.second.y() < y.second.y())));
+  });
+  std::vector<Vec2>& hull = sums.hull;
+  std::vector<Vec2>& own = sums.group;
+  for (std::size_t k = 0; k < points.size();) {
+    const int i = points[k].first;
+    std::size_t end = k;
+    while (end < points.size() && points[end].first == i) ++end;
+    const RigidBody& body = world.bodies[static_cast<std::size_t>(i)];
+    if (!body.immovable && !body.friction.frictionless() && !support[i].slides) {
+      const std::size_t count = end - k;
+      hull.resize(2 * count);
+      own.resize(count);
+      for (std::size_t j = 0; j < count; ++j) own[j] = points[k + j].second;
+      const Vec3 centre = moment[static_cast<std::size_t>(i)] / load[static_cast<std::size_t>(i)];
+      support[i].held = overHull(own.data(), count, hull.data(), Vec2(centre.x(), centre.z()), 1e-9);
+    }
+    k = end;
+  }
+  // A body on one that is not held is not held either: the stack under it may tip.
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (const FrictionSlideLists::Carried& c : carried) {
+      if (!support[c.body].held || support[c.under].held) continue;
+      support[c.body].held = false;
+      changed = true;
+    }
+  }
+}
+}  // namespace
+
 void markFrictionSlides(const World& world, const std::vector<ContactManifold>& contacts,
                         std::vector<SupportVerdict>& support, FrictionSlideLists* lists) {
   const std::size_t n = world.bodies.size();
-  support.resize(n, SupportVerdict{true, true, false});
-  for (SupportVerdict& verdict : support) verdict.slides = false;  // this function's own field
+  support.resize(n, SupportVerdict{true, true, false, false});
+  for (SupportVerdict& verdict : support) verdict.slides = verdict.held = false;  // its own fields
   const double g = world.gravity.norm();
   if (!(g > 0.0)) return;
   const Vec3 down = world.gravity / g;
@@ -146,11 +223,13 @@ void markFrictionSlides(const World& world, const std::vector<ContactManifold>& 
   std::vector<Vec3>& pushed = sums.pushed;
   std::vector<double>& weight = sums.weight;
   std::vector<double>& mu = sums.mu;
-  std::vector<std::pair<int, int>>& carried = sums.carried;
+  std::vector<FrictionSlideLists::Carried>& carried = sums.carried;
+  std::vector<std::pair<int, Vec2>>& points = sums.points;
   pushed.assign(n, Vec3::Zero());
   weight.assign(n, 0.0);
   mu.assign(n, 0.0);
   carried.clear();
+  points.clear();
   for (const ContactManifold& m : contacts) {
     if (m.count == 0) continue;
     const double muStatic =
@@ -163,7 +242,10 @@ void markFrictionSlides(const World& world, const std::vector<ContactManifold>& 
       weight[i] += bears;
       mu[i] += bears * muStatic;
       const int under = i == m.b ? m.a : m.b;
-      if (!world.bodies[i].immovable && !world.bodies[under].immovable) carried.emplace_back(i, under);
+      if (!world.bodies[i].immovable && !world.bodies[under].immovable)
+        carried.push_back({i, under, bears});
+      for (int k = 0; k < m.count; ++k)
+        points.emplace_back(i, Vec2(m.points[k].position.x(), m.points[k].position.z()));
     }
   }
   for (std::size_t i = 0; i < n; ++i) {
@@ -189,14 +271,15 @@ void markFrictionSlides(const World& world, const std::vector<ContactManifold>& 
   // (with μ = 0.5 the heap then never slept whole; 2.83 s without).
   for (bool changed = true; changed;) {
     changed = false;
-    for (const auto& [i, under] : carried) {
-      if (support[i].slides || !support[under].slides || !(weight[under] > 0.0) ||
-          world.bodies[i].friction.frictionless())
+    for (const FrictionSlideLists::Carried& c : carried) {
+      if (support[c.body].slides || !support[c.under].slides || !(weight[c.under] > 0.0) ||
+          world.bodies[c.body].friction.frictionless())
         continue;
-      support[i].slides = true;
+      support[c.body].slides = true;
       changed = true;
     }
   }
+  markFrictionHeld(world, down, support, sums);
 }
 
 DampingStats dampenObjects(World& world, double dt, const std::vector<char>& touched,

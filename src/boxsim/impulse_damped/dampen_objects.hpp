@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "boxsim/collision/xz_hull.hpp"
+
 #include "boxsim/core/world.hpp"
 #include "boxsim/impulse_damped/centre_over_support.hpp"
 #include "boxsim/impulse_damped/impulse_params.hpp"
@@ -36,9 +38,19 @@ struct FrictionSlideLists {
   std::vector<Vec3> pushed;    ///< per body, the weighted sum of its supports' normals
   std::vector<double> weight;  ///< per body, the sum of the weights
   std::vector<double> mu;      ///< per body, the weighted sum of the supports' μs
-  /// (body, the body under it) for each contact that pushes a movable body against gravity
-  /// and is made by a movable one, in contact order.
-  std::vector<std::pair<int, int>> carried;
+  /// A contact that pushes a movable body against gravity, made by a movable one.
+  struct Carried {
+    int body;      ///< the body it pushes up
+    int under;     ///< the body under it
+    double bears;  ///< its weight in `weight`: -n · ĝ
+  };
+  std::vector<Carried> carried;  ///< every such contact, in contact order
+  /// (body, xz of the point, m): the points of every contact that pushes a body against gravity.
+  std::vector<std::pair<int, Vec2>> points;
+  std::vector<Vec2> group;         ///< room for one body's points
+  std::vector<Vec2> hull;          ///< room for one body's hull of those points
+  std::vector<double> load;        ///< per body, kg: its mass and the shares it carries
+  std::vector<Vec3> moment;        ///< per body, kg m: the same masses times their centres
 };
 
 /// Sets SupportVerdict::slides, in `support` (one verdict per body; resized to the world's
@@ -57,6 +69,13 @@ struct FrictionSlideLists {
 /// whose velocity is small, which for a box on a plank steeper than atan μ is every step (a step
 /// adds g (sin θ - μ cos θ) Δt, about 3 cm/s at 35° and μ = 0.5), so friction would act as if
 /// its cone had no bound. A body its friction cannot hold is not rested.
+/// Sets SupportVerdict::held as well, for every movable body with Coulomb friction that is not
+/// marked to slide and whose load lies over its support: the centre of mass of the body and of
+/// the loads of the bodies resting on it (each spread over its movable supports in proportion to
+/// what each bears, -n · ĝ, from the top down) lies, seen from above (in x and z: DAMPENOBJECTS
+/// reads y as up), over the convex hull of the points of its contacts that push it against
+/// gravity (within 1e-9 m), and every movable body under it is held too. dampMomenta takes a
+/// small vertical velocity from such a body as from one lying flat (\alg{DAMPENOBJECTS L7-L9}).
 /// `lists`, when given, holds the per-body sums between calls.
 void markFrictionSlides(const World& world, const std::vector<ContactManifold>& contacts,
                         std::vector<SupportVerdict>& support, FrictionSlideLists* lists = nullptr);
