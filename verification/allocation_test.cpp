@@ -97,7 +97,10 @@ TEST_CASE("A damped step allocates nothing once its lists have grown to the scen
   params.sleep.enabled = false;
   SECTION("the tower, awake") { CHECK(allocationsOfSteps("tower10", params, 60, 60) == 0); }
   SECTION("the clump on the ground with Coulomb friction, awake") {
-    CHECK(allocationsOfSteps("clump100_ground", params, 300, 60, 0.5) == 0);
+    // Boxes left on an edge or a corner tumble on until about 12 s (their friction holds no
+    // load beyond their support: SupportVerdict::held), and the sweep's lists grow with the
+    // ground the clump covers until then.
+    CHECK(allocationsOfSteps("clump100_ground", params, 720, 60, 0.5) == 0);
   }
   SECTION("a pile of 343 cubes, awake") {
     CHECK(allocationsOfSteps("pile343", params, 300, 60) == 0);

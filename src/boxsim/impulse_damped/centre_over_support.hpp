@@ -50,9 +50,10 @@ struct SupportVerdict {
   /// Coulomb friction cannot hold the body where it lies (markFrictionSlides): DAMPENOBJECTS'
   /// rests (L6-L21) and its snap (L23-L28) leave it alone. Never set in a frictionless world.
   bool slides = false;
-  /// Coulomb friction holds the body and what rests on it where they lie (markFrictionSlides):
-  /// DAMPENOBJECTS' vertical rest (L7-L9) applies to it as to a box lying flat. Never set in a
-  /// frictionless world.
+  /// Coulomb friction holds the body with the load on it where it lies, and every body under it
+  /// is held (markFrictionSlides): only then do DAMPENOBJECTS' rests (L6-L21) and snap (L23-L28)
+  /// act on a frictional body, and its vertical rest (L7-L9) as on a box lying flat. Never set
+  /// in a frictionless world.
   bool held = false;
 };
 

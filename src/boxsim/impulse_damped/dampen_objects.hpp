@@ -43,6 +43,7 @@ struct FrictionSlideLists {
     int body;      ///< the body it pushes up
     int under;     ///< the body under it
     double bears;  ///< its weight in `weight`: -n · ĝ
+    std::size_t contact;  ///< its manifold in the contacts markFrictionSlides was given
   };
   std::vector<Carried> carried;  ///< every such contact, in contact order
   /// (body, xz of the point, m): the points of every contact that pushes a body against gravity.
@@ -70,12 +71,16 @@ struct FrictionSlideLists {
 /// adds g (sin θ - μ cos θ) Δt, about 3 cm/s at 35° and μ = 0.5), so friction would act as if
 /// its cone had no bound. A body its friction cannot hold is not rested.
 /// Sets SupportVerdict::held as well, for every movable body with Coulomb friction that is not
-/// marked to slide and whose load lies over its support: the centre of mass of the body and of
-/// the loads of the bodies resting on it (each spread over its movable supports in proportion to
-/// what each bears, -n · ĝ, from the top down) lies, seen from above (in x and z: DAMPENOBJECTS
-/// reads y as up), over the convex hull of the points of its contacts that push it against
-/// gravity (within 1e-9 m), and every movable body under it is held too. dampMomenta takes a
-/// small vertical velocity from such a body as from one lying flat (\alg{DAMPENOBJECTS L7-L9}).
+/// marked to slide and whose load lies over its support, seen from above (in x and z:
+/// DAMPENOBJECTS reads y as up): the centre of its own weight and of the loads pressing on it
+/// lies over the convex hull of the points of its contacts that push it against gravity (within
+/// 1e-9 m), and every movable body under it is held too. Loads are passed on from the top down:
+/// a body's load (its mass and what presses on it) is shared among its movable supports in
+/// proportion to what each bears, -n · ĝ, and presses on each at the point of that contact's
+/// patch nearest to the load's centre (the centre itself for a body on one support: a stack
+/// passes the centre of its whole load down). DAMPENOBJECTS rests (L6-L21) and snaps (L23-L28)
+/// a frictional body only when it is held, and takes a small vertical velocity from a held body
+/// as from one lying flat (L7-L9).
 /// `lists`, when given, holds the per-body sums between calls.
 void markFrictionSlides(const World& world, const std::vector<ContactManifold>& contacts,
                         std::vector<SupportVerdict>& support, FrictionSlideLists* lists = nullptr);
