@@ -238,11 +238,14 @@ void markFrictionHeld(const World& world, const std::vector<ContactManifold>& co
     }
     k = end;
   }
-  // A body on one that is not held is not held either: the stack under it may tip.
+  // A body on one that is not held is not held either: the stack under it may tip. As with
+  // slides, only a supported body passes it on (a body in flight has nothing to hold it).
   for (bool changed = true; changed;) {
     changed = false;
     for (const FrictionSlideLists::Carried& c : carried) {
-      if (!support[c.body].held || support[c.under].held) continue;
+      if (!support[c.body].held || support[c.under].held ||
+          !(weight[static_cast<std::size_t>(c.under)] > 0.0))
+        continue;
       support[c.body].held = false;
       changed = true;
     }

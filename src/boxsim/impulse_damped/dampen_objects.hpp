@@ -74,7 +74,7 @@ struct FrictionSlideLists {
 /// marked to slide and whose load lies over its support, seen from above (in x and z:
 /// DAMPENOBJECTS reads y as up): the centre of its own weight and of the loads pressing on it
 /// lies over the convex hull of the points of its contacts that push it against gravity (within
-/// 1e-9 m), and every movable body under it is held too. Loads are passed on from the top down:
+/// 1e-9 m), and every movable body under it that has a support of its own is held too. Loads are passed on from the top down:
 /// a body's load (its mass and what presses on it) is shared among its movable supports in
 /// proportion to what each bears, -n · ĝ, and presses on each at the point of that contact's
 /// patch nearest to the load's centre (the centre itself for a body on one support: a stack
