@@ -208,7 +208,8 @@ void markFrictionHeld(const World& world, const std::vector<ContactManifold>& co
     // bridging several (a box lying across the corner of another presses on that corner).
     const Vec3 centre = moment[body] / load[body];
     const ContactManifold& m = contacts[c.contact];
-    for (int k = 0; k < m.count; ++k) patch[k] = Vec2(m.points[k].position.x(), m.points[k].position.z());
+    for (int k = 0; k < m.count; ++k)
+      patch[k] = Vec2(m.points[k].position.x(), m.points[k].position.z());
     const Vec2 at = nearestInHull(patch.data(), static_cast<std::size_t>(m.count), patchHull.data(),
                                   Vec2(centre.x(), centre.z()));
     load[static_cast<std::size_t>(c.under)] += share;
@@ -234,7 +235,8 @@ void markFrictionHeld(const World& world, const std::vector<ContactManifold>& co
       own.resize(count);
       for (std::size_t j = 0; j < count; ++j) own[j] = points[k + j].second;
       const Vec3 centre = moment[static_cast<std::size_t>(i)] / load[static_cast<std::size_t>(i)];
-      support[i].held = overHull(own.data(), count, hull.data(), Vec2(centre.x(), centre.z()), 1e-9);
+      support[i].held =
+          overHull(own.data(), count, hull.data(), Vec2(centre.x(), centre.z()), 1e-9);
     }
     k = end;
   }

@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "boxsim/collision/xz_hull.hpp"
-
 #include "boxsim/core/world.hpp"
 #include "boxsim/impulse_damped/centre_over_support.hpp"
 #include "boxsim/impulse_damped/impulse_params.hpp"
@@ -40,9 +39,9 @@ struct FrictionSlideLists {
   std::vector<double> mu;      ///< per body, the weighted sum of the supports' μs
   /// A contact that pushes a movable body against gravity, made by a movable one.
   struct Carried {
-    int body;      ///< the body it pushes up
-    int under;     ///< the body under it
-    double bears;  ///< its weight in `weight`: -n · ĝ
+    int body;             ///< the body it pushes up
+    int under;            ///< the body under it
+    double bears;         ///< its weight in `weight`: -n · ĝ
     std::size_t contact;  ///< its manifold in the contacts markFrictionSlides was given
   };
   std::vector<Carried> carried;  ///< every such contact, in contact order
@@ -50,8 +49,9 @@ struct FrictionSlideLists {
   std::vector<std::pair<int, Vec2>> points;
   std::vector<Vec2> group;         ///< room for one body's points
   std::vector<Vec2> hull;          ///< room for one body's hull of those points
-  std::vector<double> load;        ///< per body, kg: its mass and the shares it carries
-  std::vector<Vec3> moment;        ///< per body, kg m: the same masses times their centres
+  std::vector<double> load;        ///< per body, kg: its mass and the shares pressing on it
+  /// per body, kg m: those masses times where they press (its own at its centre of mass)
+  std::vector<Vec3> moment;
 };
 
 /// Sets SupportVerdict::slides, in `support` (one verdict per body; resized to the world's
@@ -74,13 +74,13 @@ struct FrictionSlideLists {
 /// marked to slide and whose load lies over its support, seen from above (in x and z:
 /// DAMPENOBJECTS reads y as up): the centre of its own weight and of the loads pressing on it
 /// lies over the convex hull of the points of its contacts that push it against gravity (within
-/// 1e-9 m), and every movable body under it that has a support of its own is held too. Loads are passed on from the top down:
-/// a body's load (its mass and what presses on it) is shared among its movable supports in
-/// proportion to what each bears, -n · ĝ, and presses on each at the point of that contact's
-/// patch nearest to the load's centre (the centre itself for a body on one support: a stack
-/// passes the centre of its whole load down). DAMPENOBJECTS rests (L6-L21) and snaps (L23-L28)
-/// a frictional body only when it is held, and takes a small vertical velocity from a held body
-/// as from one lying flat (L7-L9).
+/// 1e-9 m), and every movable body under it that has a support of its own is held too. Loads
+/// are passed on from the top down: a body's load (its mass and what presses on it) is shared
+/// among its movable supports in proportion to what each bears, -n · ĝ, and presses on each at
+/// the point of that contact's patch nearest to the load's centre (the centre itself for a body
+/// on one support: a stack passes the centre of its whole load down). DAMPENOBJECTS rests
+/// (L6-L21) and snaps (L23-L28) a frictional body only when it is held, and takes a small
+/// vertical velocity from a held body as from one lying flat (L7-L9).
 /// `lists`, when given, holds the per-body sums between calls.
 void markFrictionSlides(const World& world, const std::vector<ContactManifold>& contacts,
                         std::vector<SupportVerdict>& support, FrictionSlideLists* lists = nullptr);
