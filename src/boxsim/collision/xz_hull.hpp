@@ -56,6 +56,13 @@ inline std::vector<Vec2> convexHullXZ(std::vector<Vec2> points) {
   return hull;
 }
 
+/// The point of the segment from a to b nearest to c (a when the segment is a point).
+inline Vec2 nearestOnSegment(const Vec2& a, const Vec2& b, const Vec2& c) {
+  const double length2 = (b - a).squaredNorm();
+  const double t = length2 > 0.0 ? std::clamp((c - a).dot(b - a) / length2, 0.0, 1.0) : 0.0;
+  return a + t * (b - a);
+}
+
 /// True when c lies in the convex hull of the `count` points at `points` (sorted in place), or
 /// within `tolerance` (m) of it; `hull` has room for 2 count points.
 inline bool overHull(Vec2* points, std::size_t count, Vec2* hull, const Vec2& c, double tolerance) {
@@ -69,11 +76,7 @@ inline bool overHull(Vec2* points, std::size_t count, Vec2* hull, const Vec2& c,
     return true;
   }
   // A point, or a segment: an edge line or a corner.
-  const Vec2& a = hull[0];
-  const Vec2& b = hull[size - 1];
-  const double length2 = (b - a).squaredNorm();
-  const double t = length2 > 0.0 ? std::clamp((c - a).dot(b - a) / length2, 0.0, 1.0) : 0.0;
-  return (a + t * (b - a) - c).norm() <= tolerance;
+  return (nearestOnSegment(hull[0], hull[size - 1], c) - c).norm() <= tolerance;
 }
 
 /// The face of a box whose outward normal points most nearly up or down, of any orientation:

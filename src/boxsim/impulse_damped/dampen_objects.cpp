@@ -159,11 +159,7 @@ Vec2 nearestInHull(Vec2* points, std::size_t count, Vec2* hull, const Vec2& c) {
   double best = std::numeric_limits<double>::infinity();
   // Every edge of the hull (a segment: its one edge, both ways).
   for (std::size_t k = 0; k < size; ++k) {
-    const Vec2& a = hull[k];
-    const Vec2& b = hull[(k + 1) % size];
-    const double length2 = (b - a).squaredNorm();
-    const double t = length2 > 0.0 ? std::clamp((c - a).dot(b - a) / length2, 0.0, 1.0) : 0.0;
-    const Vec2 p = a + t * (b - a);
+    const Vec2 p = nearestOnSegment(hull[k], hull[(k + 1) % size], c);
     const double d = (p - c).squaredNorm();
     if (d < best) {
       best = d;
