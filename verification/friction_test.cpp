@@ -373,8 +373,10 @@ TEST_CASE("A pile of 125 tumbling cubes settles with its boxes overlapping by mi
           "[friction][impulse_damped][chatter]") {
   // 125 cubes dropped low, tumbling, at e = 0 (a small pile343.json). Sharing side contacts in
   // FIXCONTACTCONSTRAINTS (FixContactParams::sideShareAngleDeg) is what keeps a box squeezed
-  // between side neighbours from sinking into one of them; measured at 8 s: 3.3 mm with
-  // μ = 0.5 and 0.5 mm frictionless, against 31.5 mm and 17 mm with the upper body alone.
+  // between side neighbours from sinking into one of them; measured at 8 s: 0.5 mm
+  // frictionless against 17 mm with the upper body alone. With μ = 0.5 this run no longer
+  // squeezes a box so (2.0 mm shared, 1.4 mm with the upper body alone, where it was 88 mm
+  // when the sharing came in): there only the depth is checked.
   const auto pile = [](double mu, double shareDeg) {
     Scene scene = parseScene(R"({"restitution": 0, "ground": {"half_size": 20},
         "builders": [{"type": "clump", "count": 125, "size": 1, "spacing": 1.5,
@@ -388,16 +390,11 @@ TEST_CASE("A pile of 125 tumbling cubes settles with its boxes overlapping by mi
     return deepestPenetration(scene.world);
   };
   const double shared = FixContactParams{}.sideShareAngleDeg;
-  for (double mu : {kMu, 0.0}) {
-    INFO("mu = " << mu);
-    const double withShare = pile(mu, shared);
-    CHECK(withShare < 0.01);
-    // Several times deeper without, and beyond the centimetre: the sharing, not the pile, keeps
-    // it shallow.
-    const double alone = pile(mu, 0.0);
-    CHECK(alone > 0.02);
-    CHECK(alone > 5.0 * withShare);
-  }
+  CHECK(pile(kMu, shared) < 0.01);
+  const double withShare = pile(0.0, shared);
+  CHECK(withShare < 0.01);
+  // An order of magnitude deeper without: the sharing, not the pile, keeps it shallow.
+  CHECK(pile(0.0, 0.0) > 10.0 * withShare);
 }
 
 namespace {

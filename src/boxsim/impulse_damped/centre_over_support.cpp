@@ -88,6 +88,20 @@ Polygon contactPatch(const LevelFace& bottom, const LevelFace& top, double band)
   return patch;
 }
 
+}  // namespace
+
+SupportTest::Polygon levelContactPatch(const RigidBody& upper, const RigidBody& lower,
+                                       const SupportTestParams& params) {
+  const double alignedCosine = std::cos(params.alignedAngleDeg * kPi / 180.0);
+  const LevelFace bottom = levelFace(upper, false, alignedCosine);
+  if (bottom.outline.count == 0) return {};
+  const LevelFace top = levelFace(lower, true, alignedCosine);
+  if (top.outline.count == 0) return {};
+  return contactPatch(bottom, top, params.contactBand);
+}
+
+namespace {
+
 /// Whether two manifolds are the same pair with the same normal and points, bit for bit: all
 /// the support test reads of a manifold.
 bool sameManifold(const ContactManifold& x, const ContactManifold& y) {

@@ -146,4 +146,12 @@ class SupportTest {
   std::vector<SupportVerdict> verdicts_;
 };
 
+/// Where box `upper` lies face down on box `lower`'s face up, seen from above (x and z, m,
+/// counter-clockwise): the overlap of the two faces where the gap between their planes lies
+/// within ± params.contactBand, when both boxes have an axis within params.alignedAngleDeg of y;
+/// empty otherwise. The support region SupportTest takes for such a pair, whatever points the
+/// narrow phase gave it.
+SupportTest::Polygon levelContactPatch(const RigidBody& upper, const RigidBody& lower,
+                                       const SupportTestParams& params);
+
 }  // namespace boxsim

@@ -186,20 +186,19 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
     // changed since) a narrow phase of its own with the same margin.
     static const std::vector<SupportVerdict> asWritten;
     const std::vector<SupportVerdict>* support = &asWritten;
+    const double restingMargin = restingContactMargin(world, margin, dt);
+    const SupportTestParams supportParams{params_.sleep.supportNormalY,
+                                          params_.damping.alignedAngleDeg, restingMargin, margin};
     if (params_.damping.supportTest || friction) {
-      const double restingMargin = restingContactMargin(world, margin, dt);
       if (!posesUnchanged(world, lastPoses_))
         lastContacts_ = findContacts(world, restingMargin, candidatePairs(world, restingMargin),
                                      &gathering_.kept());
-      if (params_.damping.supportTest)
-        support = &supportTest_(world, lastContacts_,
-                                {params_.sleep.supportNormalY, params_.damping.alignedAngleDeg,
-                                 restingMargin, margin});
+      if (params_.damping.supportTest) support = &supportTest_(world, lastContacts_, supportParams);
     }
     // Coulomb's cone bounds the rests (markFrictionSlides); a frictionless world is A.2's.
     if (friction) {
       slideVerdicts_.assign(support->begin(), support->end());
-      markFrictionSlides(world, lastContacts_, slideVerdicts_, &slideLists_);
+      markFrictionSlides(world, lastContacts_, slideVerdicts_, &slideLists_, supportParams);
       support = &slideVerdicts_;
     }
     dampenObjects(world, dt, touched, params_.damping, params_.impulse.integrator, *support,

@@ -169,8 +169,7 @@ Vec2 nearestInHull(Vec2* points, std::size_t count, Vec2* hull, const Vec2& c) {
   return nearest;
 }
 
-void markFrictionHeld(const World& world, const std::vector<ContactManifold>& contacts,
-                      const Vec3& down, std::vector<SupportVerdict>& support,
+void markFrictionHeld(const World& world, const Vec3& down, std::vector<SupportVerdict>& support,
                       FrictionSlideLists& sums) {
   const std::size_t n = world.bodies.size();
   std::vector<double>& load = sums.load;
@@ -192,8 +191,8 @@ void markFrictionHeld(const World& world, const std::vector<ContactManifold>& co
     return hx > hy || (hx == hy && (x.body < y.body || (x.body == y.body && x.under < y.under)));
   });
   const std::vector<double>& weight = sums.weight;
-  std::array<Vec2, 4> patch;
-  std::array<Vec2, 8> patchHull;
+  std::vector<Vec2>& patch = sums.group;
+  std::vector<Vec2>& patchHull = sums.hull;
   for (const FrictionSlideLists::Carried& c : carried) {
     if (!(height(c.under) < height(c.body))) continue;
     const std::size_t body = static_cast<std::size_t>(c.body);
@@ -203,11 +202,11 @@ void markFrictionHeld(const World& world, const std::vector<ContactManifold>& co
     // (a stack passes its whole load's centre down), at the patch's edge towards it for a body
     // bridging several (a box lying across the corner of another presses on that corner).
     const Vec3 centre = moment[body] / load[body];
-    const ContactManifold& m = contacts[c.contact];
-    for (int k = 0; k < m.count; ++k)
-      patch[k] = Vec2(m.points[k].position.x(), m.points[k].position.z());
-    const Vec2 at = nearestInHull(patch.data(), static_cast<std::size_t>(m.count), patchHull.data(),
-                                  Vec2(centre.x(), centre.z()));
+    patch.assign(sums.patches.begin() + static_cast<std::ptrdiff_t>(c.first),
+                 sums.patches.begin() + static_cast<std::ptrdiff_t>(c.first + c.count));
+    patchHull.resize(2 * c.count);
+    const Vec2 at =
+        nearestInHull(patch.data(), c.count, patchHull.data(), Vec2(centre.x(), centre.z()));
     load[static_cast<std::size_t>(c.under)] += share;
     moment[static_cast<std::size_t>(c.under)] += share * Vec3(at.x(), centre.y(), at.y());
   }
@@ -252,7 +251,8 @@ void markFrictionHeld(const World& world, const std::vector<ContactManifold>& co
 }  // namespace
 
 void markFrictionSlides(const World& world, const std::vector<ContactManifold>& contacts,
-                        std::vector<SupportVerdict>& support, FrictionSlideLists* lists) {
+                        std::vector<SupportVerdict>& support, FrictionSlideLists* lists,
+                        const SupportTestParams& params) {
   const std::size_t n = world.bodies.size();
   support.resize(n, SupportVerdict{true, true, false, false});
   for (SupportVerdict& verdict : support) verdict.slides = verdict.held = false;  // its own fields
@@ -273,8 +273,10 @@ void markFrictionSlides(const World& world, const std::vector<ContactManifold>& 
   pushed.assign(n, Vec3::Zero());
   weight.assign(n, 0.0);
   mu.assign(n, 0.0);
+  std::vector<Vec2>& patches = sums.patches;
   carried.clear();
   points.clear();
+  patches.clear();
   for (std::size_t index = 0; index < contacts.size(); ++index) {
     const ContactManifold& m = contacts[index];
     if (m.count == 0) continue;
@@ -288,10 +290,20 @@ void markFrictionSlides(const World& world, const std::vector<ContactManifold>& 
       weight[i] += bears;
       mu[i] += bears * muStatic;
       const int under = i == m.b ? m.a : m.b;
+      // Where the two touch, seen from above: the faces' patch when both lie face to face (the
+      // narrow phase may give such a pair one point, on an edge), else the manifold's points.
+      const std::size_t first = patches.size();
+      const SupportTest::Polygon patch =
+          levelContactPatch(world.bodies[i], world.bodies[under], params);
+      if (patch.count > 0)
+        patches.insert(patches.end(), patch.points.begin(), patch.points.begin() + patch.count);
+      else
+        for (int k = 0; k < m.count; ++k)
+          patches.emplace_back(m.points[k].position.x(), m.points[k].position.z());
+      const std::size_t count = patches.size() - first;
+      for (std::size_t k = first; k < patches.size(); ++k) points.emplace_back(i, patches[k]);
       if (!world.bodies[i].immovable && !world.bodies[under].immovable)
-        carried.push_back({i, under, bears, index});
-      for (int k = 0; k < m.count; ++k)
-        points.emplace_back(i, Vec2(m.points[k].position.x(), m.points[k].position.z()));
+        carried.push_back({i, under, bears, first, count});
     }
   }
   for (std::size_t i = 0; i < n; ++i) {
@@ -325,7 +337,7 @@ void markFrictionSlides(const World& world, const std::vector<ContactManifold>& 
       changed = true;
     }
   }
-  markFrictionHeld(world, contacts, down, support, sums);
+  markFrictionHeld(world, down, support, sums);
 }
 
 DampingStats dampenObjects(World& world, double dt, const std::vector<char>& touched,

@@ -42,9 +42,12 @@ struct FrictionSlideLists {
     int body;             ///< the body it pushes up
     int under;            ///< the body under it
     double bears;         ///< its weight in `weight`: -n · ĝ
-    std::size_t contact;  ///< its manifold in the contacts markFrictionSlides was given
+    std::size_t first;    ///< where its patch begins in `patches`
+    std::size_t count;    ///< the patch's points
   };
   std::vector<Carried> carried;  ///< every such contact, in contact order
+  /// xz, m: the patch of each carrying contact (levelContactPatch, or the manifold's points).
+  std::vector<Vec2> patches;
   /// (body, xz of the point, m): the points of every contact that pushes a body against gravity.
   std::vector<std::pair<int, Vec2>> points;
   std::vector<Vec2> group;         ///< room for one body's points
@@ -74,16 +77,20 @@ struct FrictionSlideLists {
 /// marked to slide and whose load lies over its support, seen from above (in x and z:
 /// DAMPENOBJECTS reads y as up): the centre of its own weight and of the loads pressing on it
 /// lies over the convex hull of the points of its contacts that push it against gravity (within
-/// 1e-9 m), and every movable body under it that has a support of its own is held too. Loads
-/// are passed on from the top down: a body's load (its mass and what presses on it) is shared
-/// among its movable supports in proportion to what each bears, -n · ĝ, and presses on each at
-/// the point of that contact's patch nearest to the load's centre (the centre itself for a body
+/// 1e-9 m; see `params` below), and every movable body under it that has a support of its own is
+/// held too. Loads are passed on from the top down: a body's load (its mass and what presses on
+/// it) is shared among its movable supports in proportion to what each bears, -n · ĝ, and
+/// presses on each at the point of that contact's patch nearest to the load's centre (the centre itself for a body
 /// on one support: a stack passes the centre of its whole load down). DAMPENOBJECTS rests
 /// (L6-L21) and snaps (L23-L28) a frictional body only when it is held, and takes a small
 /// vertical velocity from a held body as from one lying flat (L7-L9).
 /// `lists`, when given, holds the per-body sums between calls.
+/// `params` name, as for SupportTest, when two boxes lie face to face: the support points of
+/// such a pair are the patch where their faces meet (levelContactPatch), whatever points the
+/// narrow phase gave it, else the manifold's points.
 void markFrictionSlides(const World& world, const std::vector<ContactManifold>& contacts,
-                        std::vector<SupportVerdict>& support, FrictionSlideLists* lists = nullptr);
+                        std::vector<SupportVerdict>& support, FrictionSlideLists* lists = nullptr,
+                        const SupportTestParams& params = {});
 
 /// Scales the momenta of the bodies marked `touched` (one flag per body) as
 /// \alg{DAMPENOBJECTS L1-L21}, with the thresholds of `params` turned into momenta for each body:
