@@ -3,7 +3,6 @@
 #include "boxsim/impulse_damped/dampen_objects.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 
@@ -111,7 +110,8 @@ void dampMomenta(World& world, double dt, const std::vector<char>& touched,
     // 19 mm in 8 s and never slept, seven crept 0.28 m in 8 s with the top one reported falling at
     // 0.4 m/s. Now they stand and sleep after 0.5 s; five on a 20° plank, whose load lies beyond
     // the lowest box's downhill edge, are not held.
-    const bool held = overSupport && !rates && !support.empty() && support[i].held;
+    // overSupport already requires SupportVerdict::held of a frictional body.
+    const bool held = overSupport && !rates && !support.empty();
     if (yAxisAligned || held) {
       if (std::abs(o.s.P.y()) < params.verticalVelocityEps * pUnit) {
         o.s.P.y() = 0.0;
@@ -148,7 +148,6 @@ void dampMomenta(World& world, double dt, const std::vector<char>& touched,
 }
 
 namespace {
-/// SupportVerdict::held (markFrictionSlides) from the sums markFrictionSlides made; `down` is ĝ.
 /// The point of the convex hull of the xz points [points, points + count) nearest to c (c itself
 /// when it lies over the hull); `hull` has room for 2 count points.
 Vec2 nearestInHull(Vec2* points, std::size_t count, Vec2* hull, const Vec2& c) {
@@ -169,6 +168,7 @@ Vec2 nearestInHull(Vec2* points, std::size_t count, Vec2* hull, const Vec2& c) {
   return nearest;
 }
 
+/// SupportVerdict::held (markFrictionSlides) from the sums markFrictionSlides made; `down` is ĝ.
 void markFrictionHeld(const World& world, const Vec3& down, std::vector<SupportVerdict>& support,
                       FrictionSlideLists& sums) {
   const std::size_t n = world.bodies.size();
