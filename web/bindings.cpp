@@ -1,8 +1,10 @@
 /// \file
 /// The demo's JavaScript interface (Emscripten's embind): `new Module.Demo(scene, method,
-/// sleep, geometricStability, filter)`, then step(), shoot(), and the poses, flags and digest
-/// the page draws and checks. Poses and flags are views into the module's memory, valid until
-/// the next call that steps or shoots.
+/// sleep, geometricStability, filter, friction)`, then step(), shoot(), and the poses, flags and
+/// digest the page draws and checks; sceneBodies(), restitution() and gravity() hand the scene
+/// to the other engines of the page (peer_engines.js), penetration() and penetrationAt(poses)
+/// measure every engine with boxsim's separating-axis test. Poses are a view into the module's
+/// memory, valid until the next call that steps or shoots.
 #include <emscripten/bind.h>
 
 #include "demo.hpp"
@@ -13,8 +15,19 @@ using boxsim::web::Demo;
 using boxsim::web::DemoSettings;
 
 Demo* makeDemo(const std::string& scene, const std::string& method, bool sleep,
-               bool geometricStability, const std::string& filter) {
-  return new Demo(DemoSettings{scene, method, sleep, geometricStability, filter});
+               bool geometricStability, const std::string& filter, double friction) {
+  return new Demo(DemoSettings{scene, method, sleep, geometricStability, filter, friction});
+}
+
+emscripten::val sceneBodies(const Demo& demo) {
+  const std::vector<double> bodies = demo.sceneBodies();
+  // A copy: the vector dies here.
+  return emscripten::val::global("Float64Array")
+      .new_(emscripten::val(emscripten::typed_memory_view(bodies.size(), bodies.data())));
+}
+
+double penetrationAt(const Demo& demo, const emscripten::val& poses) {
+  return demo.penetrationAt(emscripten::convertJSArrayToNumberVector<double>(poses));
 }
 
 emscripten::val poses(const Demo& demo) {
@@ -56,6 +69,13 @@ EMSCRIPTEN_BINDINGS(boxsim_demo) {
       .function("stateDigest", &Demo::stateDigest)
       .function("poses", &poses)
       .function("halfExtents", &halfExtents)
-      .function("flags", &flags);
+      .function("flags", &flags)
+      .function("sceneBodies", &sceneBodies)
+      .function("restitution", &Demo::restitution)
+      .function("gravity", &Demo::gravity)
+      .function("penetration", &Demo::penetration)
+      .function("penetrationAt", &penetrationAt);
+  emscripten::constant("shotCount", Demo::kShots);
+  emscripten::constant("shotSpeed", Demo::kShotSpeed);
   emscripten::function("exceptionMessage", &exceptionMessage);
 }

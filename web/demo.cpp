@@ -2,6 +2,7 @@
 /// The interactive demo's scene, stepping, shots and display (demo.hpp).
 #include "demo.hpp"
 
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
@@ -32,8 +33,31 @@ World buildScene(const std::string& name) {
   } else if (name == "tower") {
     world.addGround(0.0, 20.0);
     addTower(world, TowerSpec{});
+  } else if (name == "clump_ground") {
+    world.restitution = 0.5;
+    world.addGround(0.0, 50.0);
+    ClumpSpec spec;
+    spec.center = Vec3(0.0, 5.0, 0.0);
+    spec.target = Vec3::Zero();
+    addClump(world, spec);
+  } else if (name == "pile") {
+    world.restitution = 0.0;
+    world.addGround(0.0, 20.0);
+    ClumpSpec spec;
+    spec.count = 343;
+    spec.spacing = 1.5;
+    spec.center = Vec3(0.0, 5.5, 0.0);
+    spec.speed = 3.0;
+    spec.spin = 6.0;
+    addClump(world, spec);
+  } else if (name == "clump1000") {
+    world.addGround(0.0, 150.0);
+    ClumpSpec spec;
+    spec.count = 1000;
+    addClump(world, spec);
   } else {
-    throw std::invalid_argument("unknown scene '" + name + "'; known: pyramid, clump, die, tower");
+    throw std::invalid_argument("unknown scene '" + name +
+                                "'; known: pyramid, clump, die, tower, clump_ground, pile, clump1000");
   }
   return world;
 }
@@ -66,6 +90,10 @@ Demo::Demo(const DemoSettings& settings)
     shot.updateDerived();
     world_.addLaunched(shot, "shot" + std::to_string(k), std::numeric_limits<double>::infinity());
   }
+  if (!(settings.friction >= 0.0) || !std::isfinite(settings.friction))
+    throw std::invalid_argument("friction must be a finite μ >= 0 (0: the thesis' frictionless "
+                                "contact), not " + std::to_string(settings.friction));
+  for (RigidBody& body : world_.bodies) body.friction = Friction{settings.friction, settings.friction};
   for (const RigidBody& body : world_.bodies) start_.push_back(body.s.x);
   if (settings.filter != "none" && settings.filter != "box" && settings.filter != "envelope")
     throw std::invalid_argument("unknown filter '" + settings.filter + "'; known: none, box, envelope");
@@ -118,6 +146,37 @@ std::vector<double> Demo::halfExtents() const {
   std::vector<double> out;
   for (const RigidBody& b : world_.bodies) out.insert(out.end(), b.halfExtents.data(), b.halfExtents.data() + 3);
   return out;
+}
+
+std::vector<double> Demo::sceneBodies() const {
+  std::vector<double> out;
+  for (const RigidBody& b : world_.bodies) {
+    const double mass = b.immovable ? 0.0 : b.mass;
+    // A shot waiting for its launch is immovable with the mass it gets back when fired.
+    out.insert(out.end(), b.halfExtents.data(), b.halfExtents.data() + 3);
+    out.insert(out.end(), b.s.x.data(), b.s.x.data() + 3);
+    out.insert(out.end(), b.s.q.coeffs().data(), b.s.q.coeffs().data() + 4);
+    out.insert(out.end(), b.v.data(), b.v.data() + 3);
+    out.insert(out.end(), b.omega.data(), b.omega.data() + 3);
+    out.push_back(mass);
+  }
+  return out;
+}
+
+double Demo::penetrationAt(const std::vector<double>& poses) const {
+  if (poses.size() != 7 * world_.bodies.size())
+    throw std::invalid_argument("penetrationAt: " + std::to_string(poses.size()) +
+                                " numbers for " + std::to_string(world_.bodies.size()) +
+                                " bodies; give 7 a body (x, y, z, then the quaternion's x, y, z, w)");
+  World mirror = world_;
+  for (std::size_t i = 0; i < mirror.bodies.size(); ++i) {
+    RigidBody& b = mirror.bodies[i];
+    const double* p = &poses[7 * i];
+    b.s.x = Vec3(p[0], p[1], p[2]);
+    b.s.q = Quat(p[6], p[3], p[4], p[5]).normalized();
+    b.updateDerived();
+  }
+  return deepestPenetration(mirror);
 }
 
 std::vector<std::uint8_t> Demo::flags() const {

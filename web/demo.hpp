@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "boxsim/collision/broad_phase.hpp"
 #include "boxsim/core/stepper.hpp"
 #include "boxsim/core/world.hpp"
 #include "boxsim/filtering/box_filter.hpp"
@@ -22,8 +23,10 @@ namespace boxsim::web {
 
 /// What the page can choose.
 struct DemoSettings {
-  /// "pyramid" (Fig. 6.6, a base of 10 cubes), "clump" (Fig. 6.7, 100 cubes), "die" (§4.2) or
-  /// "tower" (10 cubes): the shipped scenes of chapters/impulse_damped/scenes, built alike.
+  /// "pyramid" (Fig. 6.6, a base of 10 cubes), "clump" (Fig. 6.7, 100 cubes), "die" (§4.2),
+  /// "tower" (10 cubes), "clump_ground" (clump100_ground.json: Fig. 6.7 thrown at the ground),
+  /// "pile" (pile343.json: 343 tumbling cubes settling into a heap) or "clump1000" (Fig. 6.7
+  /// with 1000 cubes): the shipped scenes of chapters/impulse_damped/scenes, built alike.
   std::string scene = "pyramid";
   /// "damped", "impulse", "analytic" or "basic_colliding" (techniques.hpp).
   std::string method = "damped";
@@ -31,6 +34,9 @@ struct DemoSettings {
   bool geometricStability = true;  ///< §5.4 (damped only)
   /// Display filter: "none", "box" (causal, H = 2: the display lags 2 frames) or "envelope".
   std::string filter = "none";
+  /// Coulomb friction μ (static and dynamic) of every body, the ground and the shots
+  /// included, >= 0; 0 is the thesis' frictionless contact (§3.3.2).
+  double friction = 0.0;
 };
 
 /// Per-body flags of flags().
@@ -81,6 +87,23 @@ class Demo : public FrameSink {
   void push(const TrajectoryFrame& frame) override;
   /// FrameSink: nothing to finish.
   void finish() override {}
+
+  /// The scene as other engines build it (web/peer_engines.js): per body, 17 numbers, half
+  /// extents (m, 3), position (m, 3), orientation quaternion x, y, z, w (4), velocity (m/s, 3),
+  /// angular velocity (rad/s, 3) and mass (kg; 0 for an immovable body: the ground, and the
+  /// shots until fired, which wait far from the scene). The shots are bodies kShots last.
+  std::vector<double> sceneBodies() const;
+  /// The world's coefficient of restitution (unitless), every contact's.
+  double restitution() const { return world_.restitution; }
+  /// m/s²: the world's gravity, y up.
+  double gravity() const { return world_.gravity.norm(); }
+  /// The deepest overlap of any two bodies (boxsim's separating-axis test, ground included),
+  /// m: deepestPenetration of this run's world.
+  double penetration() const { return deepestPenetration(world_); }
+  /// The same measure at poses of another engine: `poses` as poses() gives them (7 a body, for
+  /// the bodies of this scene in order); this run's state is left alone. Throws
+  /// std::invalid_argument when the count is not 7 a body.
+  double penetrationAt(const std::vector<double>& poses) const;
 
   /// FNV-1a hash (64 bit, as 16 hex digits) of the bytes of every double of every body's
   /// state x, q, P, L: equal digests mean, all but certainly, the same bits.
