@@ -1,9 +1,12 @@
-// boxsim's interactive demo: a scene of the thesis stepped by the WebAssembly engine and drawn
-// with three.js. The engine runs in a worker (demo_worker.js), which steps at real time and
-// posts the poses after every batch of steps; this page draws the latest poses at display rate
-// and sends the worker the user's commands, so that a slow technique slows the simulation and
-// not the view. window.boxsimPage is the interface the browser test (test/browser_test.mjs)
-// drives; its commands answer promises that settle once the worker has carried them out.
+// boxsim's interactive demo: a scene of the thesis stepped by the WebAssembly engine, or by
+// Jolt or Rapier (peer_engines.js), and drawn with three.js; side by side, two engines run the
+// same scene in two viewports seen from one camera, and a shot goes into both. The engines run
+// in a worker (demo_worker.js), which steps at real time and posts the poses after every batch
+// of steps; this page draws the latest poses at display rate and sends the worker the user's
+// commands, so that a slow technique slows the simulation and not the view. window.boxsimPage
+// is the interface the browser test (test/browser_test.mjs) and the browser benchmark
+// (test/browser_bench.mjs) drive; its commands answer promises that settle once the worker has
+// carried them out.
 import * as THREE from 'three';
 import { OrbitControls } from './OrbitControls.js';
 
@@ -14,20 +17,31 @@ const VIEWS = {
   clump: { eye: [30, 22, 38], target: [0, 6, 0] },
   die: { eye: [3, 3, 6], target: [0, 0.8, 0] },
   tower: { eye: [8, 7, 14], target: [0, 4, 0] },
+  clump_ground: { eye: [14, 10, 18], target: [0, 1.5, 0] },
+  pile: { eye: [14, 10, 18], target: [0, 2, 0] },
+  clump1000: { eye: [45, 32, 55], target: [0, 8, 0] },
 };
+// What the status line calls each technique or engine.
+const NAMES = { damped: 'damped', impulse: 'impulse', analytic: 'analytic',
+                basic_colliding: 'basic colliding', jolt: 'Jolt', rapier: 'Rapier' };
 
 const worker = new Worker(new URL('./demo_worker.js', import.meta.url), { type: 'module' });
 const $ = (id) => document.getElementById(id);
 
 const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
 renderer.setPixelRatio(window.devicePixelRatio);
+renderer.setScissorTest(true);
 $('view').appendChild(renderer.domElement);
-const scene3 = new THREE.Scene();
-scene3.background = new THREE.Color(0x2b3038);
-scene3.add(new THREE.HemisphereLight(0xffffff, 0x404040, 1.2));
-const sun = new THREE.DirectionalLight(0xffffff, 1.6);
-sun.position.set(10, 20, 8);
-scene3.add(sun);
+// A three.js scene of its own for each shown run, lit alike.
+function makeScene3() {
+  const scene3 = new THREE.Scene();
+  scene3.background = new THREE.Color(0x2b3038);
+  scene3.add(new THREE.HemisphereLight(0xffffff, 0x404040, 1.2));
+  const sun = new THREE.DirectionalLight(0xffffff, 1.6);
+  sun.position.set(10, 20, 8);
+  scene3.add(sun);
+  return scene3;
+}
 const camera = new THREE.PerspectiveCamera(50, 1, 0.1, 1000);
 const controls = new OrbitControls(camera, renderer.domElement);
 const colours = {
@@ -35,10 +49,11 @@ const colours = {
   stable: new THREE.Color(0x6b4a17), asleep: new THREE.Color(0x7d97b8),
 };
 
-// `latest` is the worker's last frame of the shown run (null before the first and after an
-// error), `drawn` the one the meshes show. `starting` counts restarts the worker has not yet
-// answered: the worker answers in order, so frames that arrive meanwhile are of an older run.
-let meshes = [], settings = null, latest = null, drawn = null, starting = 0;
+// `views` holds, per shown run, its three.js scene and meshes. `latest` is the worker's last
+// frame of the shown runs (null before the first and after an error), `drawn` the one the
+// meshes show. `starting` counts restarts the worker has not yet answered: the worker answers
+// in order, so frames that arrive meanwhile are of older runs.
+let views = [], settings = null, latest = null, drawn = null, starting = 0;
 let shotsLeft = 0, paused = false, frameTimes = [], lastFrame = performance.now();
 
 function fail(message) {
@@ -81,11 +96,16 @@ worker.addEventListener('error', (event) => {
   fail(event.message || 'the engine\'s worker (demo_worker.js) failed to load');
 });
 
+// Sleeping and geometric stability are switches of damped integration, the display filter is
+// boxsim's: each is offered while a shown run has them (the other engines use their own).
 function readSettings() {
-  const method = $('method').value, damped = method === 'damped';
+  const method = $('method').value, right = $('right').value, shown = [method, right];
+  const damped = shown.includes('damped');
   $('sleep').disabled = $('stability').disabled = !damped;
+  $('filter').disabled = shown.every((m) => m === 'none' || m === 'jolt' || m === 'rapier');
   return {
-    scene: $('scene').value, method, filter: $('filter').value,
+    scene: $('scene').value, method, right, filter: $('filter').value,
+    friction: Number($('friction').value),
     sleep: damped ? $('sleep').checked : true, stability: damped ? $('stability').checked : true,
   };
 }
@@ -98,21 +118,34 @@ async function start() {
   let answer = null;
   try { answer = await call('start', { settings }); } catch (error) { fail(error.message); }
   if (--starting > 0) return;  // a later restart is on its way
-  for (const mesh of meshes) { scene3.remove(mesh); mesh.geometry.dispose(); mesh.material.dispose(); }
-  meshes = [];
+  for (const { meshes } of views)
+    for (const mesh of meshes) { mesh.geometry.dispose(); mesh.material.dispose(); }
+  views = [];
   latest = drawn = null;
   if (!answer) return;
-  const { halfExtents: half, frame: first } = answer, flags = first.flags;
-  for (let i = 0; i < flags.length; ++i) {
-    const geometry = new THREE.BoxGeometry(2 * half[3 * i], 2 * half[3 * i + 1], 2 * half[3 * i + 2]);
-    const ground = i === 0 && (flags[i] & FLAG_IMMOVABLE);
-    const material = new THREE.MeshLambertMaterial({ color: ground ? colours.ground : colours.box });
-    const mesh = new THREE.Mesh(geometry, material);
-    if (!ground) mesh.add(new THREE.LineSegments(new THREE.EdgesGeometry(geometry),
-                                                 new THREE.LineBasicMaterial({ color: 0x222222 })));
-    scene3.add(mesh);
-    meshes.push(mesh);
+  const { halfExtents: half, frame: first } = answer;
+  for (const run of first.runs) {
+    const scene3 = makeScene3(), meshes = [], flags = run.flags;
+    for (let i = 0; i < flags.length; ++i) {
+      const geometry = new THREE.BoxGeometry(2 * half[3 * i], 2 * half[3 * i + 1], 2 * half[3 * i + 2]);
+      const ground = i === 0 && (flags[i] & FLAG_IMMOVABLE);
+      const material = new THREE.MeshLambertMaterial({ color: ground ? colours.ground : colours.box });
+      const mesh = new THREE.Mesh(geometry, material);
+      if (!ground) mesh.add(new THREE.LineSegments(new THREE.EdgesGeometry(geometry),
+                                                   new THREE.LineBasicMaterial({ color: 0x222222 })));
+      scene3.add(mesh);
+      meshes.push(mesh);
+    }
+    views.push({ scene3, meshes });
   }
+  // Side by side, each half is named under it.
+  const shown = [settings.method, settings.right].filter((m) => m !== 'none');
+  $('labels').replaceChildren(...(shown.length > 1 ? shown : []).map((m) => {
+    const label = document.createElement('div');
+    label.textContent = NAMES[m] ?? m;
+    return label;
+  }));
+  resize();
   const view = VIEWS[settings.scene];
   camera.position.set(...view.eye);
   controls.target.set(...view.target);
@@ -121,24 +154,32 @@ async function start() {
   draw();
 }
 
-// Draws the latest frame; the meshes move only when a new one has arrived.
+// Draws the latest frame, each shown run in its viewport (side by side: the left and right
+// halves); the meshes move only when a new frame has arrived.
 function draw() {
   if (latest && latest !== drawn) {
-    const { poses, flags } = latest;
-    for (let i = 0; i < meshes.length; ++i) {
-      const mesh = meshes[i], p = 7 * i;
-      mesh.position.set(poses[p], poses[p + 1], poses[p + 2]);
-      mesh.quaternion.set(poses[p + 3], poses[p + 4], poses[p + 5], poses[p + 6]);
-      // A shot not yet fired waits, immovable, far away: hidden.
-      mesh.visible = i === 0 || !(flags[i] & FLAG_IMMOVABLE);
-      if (i > 0) {
-        mesh.material.color.copy(flags[i] & FLAG_STABLE ? colours.stable
-                                 : flags[i] & FLAG_ASLEEP ? colours.asleep : colours.box);
+    views.forEach(({ meshes }, r) => {
+      const { poses, flags } = latest.runs[r];
+      for (let i = 0; i < meshes.length; ++i) {
+        const mesh = meshes[i], p = 7 * i;
+        mesh.position.set(poses[p], poses[p + 1], poses[p + 2]);
+        mesh.quaternion.set(poses[p + 3], poses[p + 4], poses[p + 5], poses[p + 6]);
+        // A shot not yet fired waits, immovable, far away: hidden.
+        mesh.visible = i === 0 || !(flags[i] & FLAG_IMMOVABLE);
+        if (i > 0) {
+          mesh.material.color.copy(flags[i] & FLAG_STABLE ? colours.stable
+                                   : flags[i] & FLAG_ASLEEP ? colours.asleep : colours.box);
+        }
       }
-    }
+    });
     drawn = latest;
   }
-  renderer.render(scene3, camera);
+  const width = window.innerWidth / Math.max(views.length, 1), height = window.innerHeight;
+  views.forEach(({ scene3 }, r) => {
+    renderer.setViewport(r * width, 0, width, height);
+    renderer.setScissor(r * width, 0, width, height);
+    renderer.render(scene3, camera);
+  });
 }
 
 // Every display frame: the latest poses drawn, the status line. The frame rate is the page's
@@ -150,14 +191,16 @@ function frame(now) {
   if (frameTimes.length > 60) frameTimes.shift();
   draw();
   const mean = (a) => a.reduce((s, x) => s + x, 0) / Math.max(a.length, 1);
+  const shown = settings ? [settings.method, settings.right].filter((m) => m !== 'none') : [];
   $('status').textContent = latest ?
-    `t ${latest.time.toFixed(2)} s   ${latest.msPerStep.toFixed(2)} ms/step\n` +
-    `${(1 / Math.max(mean(frameTimes), 1e-6)).toFixed(0)} fps   ${shotsLeft} shots left` : '';
+    `t ${latest.time.toFixed(2)} s   ` +
+    latest.runs.map((r, i) => `${NAMES[shown[i]] ?? shown[i]} ${r.msPerStep.toFixed(2)}`).join(', ') +
+    ` ms/step\n${(1 / Math.max(mean(frameTimes), 1e-6)).toFixed(0)} fps   ${shotsLeft} shots left` : '';
 }
 
 function resize() {
   renderer.setSize(window.innerWidth, window.innerHeight);
-  camera.aspect = window.innerWidth / window.innerHeight;
+  camera.aspect = window.innerWidth / Math.max(views.length, 1) / window.innerHeight;
   camera.updateProjectionMatrix();
 }
 
@@ -166,7 +209,9 @@ let pressed = null;
 renderer.domElement.addEventListener('pointerdown', (e) => { pressed = [e.clientX, e.clientY]; });
 renderer.domElement.addEventListener('pointerup', (e) => {
   if (!pressed || Math.hypot(e.clientX - pressed[0], e.clientY - pressed[1]) > 4) return;
-  const ndc = new THREE.Vector2(2 * e.clientX / window.innerWidth - 1, 1 - 2 * e.clientY / window.innerHeight);
+  // Side by side, each half is a viewport of the same camera: the point within the half clicked.
+  const width = window.innerWidth / Math.max(views.length, 1), x = e.clientX % width;
+  const ndc = new THREE.Vector2(2 * x / width - 1, 1 - 2 * e.clientY / window.innerHeight);
   const ray = new THREE.Raycaster();
   ray.setFromCamera(ndc, camera);
   page.shoot(camera.position.toArray(), ray.ray.direction.toArray()).catch((error) => fail(error.message));
@@ -207,11 +252,25 @@ const page = {
     if (after && starting === 0) show(after);
     draw();
   },
-  // The latest frame's simulated time (s), largest displacement (m) and mean wall-clock time
-  // of the worker's last 60 steps (ms); NaN before the first frame.
+  // The latest frame's simulated time (s), and of shown run `run` (0: the left or only one,
+  // 1: the right) its largest displacement (m) and the mean wall-clock time of its last 60
+  // steps in the worker (ms); NaN before the first frame.
   time: () => (latest ? latest.time : NaN),
-  largestDisplacement: () => (latest ? latest.largestDisplacement : NaN),
-  msPerStep: () => (latest ? latest.msPerStep : NaN),
+  runs: () => (latest ? latest.runs.length : 0),
+  largestDisplacement: (run = 0) => (latest ? latest.runs[run].largestDisplacement : NaN),
+  msPerStep: (run = 0) => (latest ? latest.runs[run].msPerStep : NaN),
+  // The bodies of shown run `run` asleep by its engine's own sleeping, and its movable bodies.
+  asleep: (run = 0) => {
+    if (!latest) return { asleep: 0, movable: 0 };
+    let asleep = 0, movable = 0;
+    for (const f of latest.runs[run].flags)
+      if (!(f & FLAG_IMMOVABLE)) { ++movable; if (f & FLAG_ASLEEP) ++asleep; }
+    return { asleep, movable };
+  },
+  // One run of the browser benchmark in the worker (demo_worker.js, bench): per step its time
+  // (ms), deepest penetration (m) and bodies asleep (−1: all).
+  bench: (scene, method, friction, steps, shot, checkMirror = false) =>
+    call('bench', { scene, method, friction, steps, shot, checkMirror }),
   // The digests of a scene of its own (not the one shown) after the given step counts, one
   // shot from the pyramid's eye point along −z after `shot` steps: web_digest's arguments.
   // Computed in the worker, which holds the shown run meanwhile.
@@ -219,7 +278,7 @@ const page = {
 };
 window.boxsimPage = page;
 
-for (const id of ['scene', 'method', 'sleep', 'stability', 'filter']) $(id).addEventListener('change', () => page.restart());
+for (const id of ['scene', 'method', 'right', 'friction', 'sleep', 'stability', 'filter']) $(id).addEventListener('change', () => page.restart());
 $('restart').addEventListener('click', () => page.restart());
 window.addEventListener('resize', resize);
 resize();

@@ -21,7 +21,11 @@ export async function serve(site) {
     if (path.endsWith('/')) path = join(path, 'index.html');
     try {
       const body = await readFile(path);
-      response.writeHead(200, { 'Content-Type': types[extname(path)] ?? 'application/octet-stream' });
+      // Cross-origin isolated, as a page that times in a worker should be: Chromium then gives
+      // performance.now() to 5 µs instead of 100 µs.
+      response.writeHead(200, { 'Content-Type': types[extname(path)] ?? 'application/octet-stream',
+                                'Cross-Origin-Opener-Policy': 'same-origin',
+                                'Cross-Origin-Embedder-Policy': 'require-corp' });
       response.end(body);
     } catch {
       response.writeHead(404);
