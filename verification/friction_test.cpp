@@ -202,6 +202,35 @@ TEST_CASE("A box sliding on the ground stops after v0 over mu g seconds, as Coul
   }
 }
 
+TEST_CASE("A box launched along the ground keeps its friction and slides v0 squared over 2 mu g, as one "
+          "that starts moving does",
+          "[friction][impulse_damped][closed_form]") {
+  // A launched body waits immovable and is rebuilt at its launch (World::applyLaunches): it lost
+  // its friction there, and a shot with μ = 0.5 was slowed by damping's e^(-3 t) instead (the
+  // rates of DAMPENOBJECTS L4-L5 stand in for friction where there is none), 19 m/s after a
+  // step at 20 m/s where Coulomb leaves 19.92.
+  const double v0 = 5.0;
+  World world = boxsim::testing::groundWorld();
+  world.restitution = 0.0;
+  world.bodies[world.groundIndex].friction = {kMu, kMu};
+  RigidBody shot = RigidBody::box(Vec3::Constant(0.5), 1.0);
+  shot.s.x = Vec3(0.0, 0.5, 0.0);
+  shot.friction = {kMu, kMu};
+  shot.updateDerived();
+  shot.setVelocity(Vec3(v0, 0.0, 0.0));
+  const int index = world.addLaunched(shot, "shot", 0.0);
+  CHECK(world.bodies[static_cast<std::size_t>(index)].friction.muDynamic == kMu);
+  world.applyLaunches(0.0);
+  const RigidBody& launched = world.bodies[static_cast<std::size_t>(index)];
+  REQUIRE(launched.friction.muStatic == kMu);
+  REQUIRE(launched.friction.muDynamic == kMu);
+  DampedIntegrationStepper stepper;
+  for (int k = 0; k < 120; ++k) stepper.step(world, kDt);
+  // The distance of semi-implicit Euler, as the sliding box of the test above.
+  CHECK(world.bodies[static_cast<std::size_t>(index)].s.x.x() ==
+        Approx(v0 * v0 / (2.0 * kMu * kG) - 0.5 * v0 * kDt).epsilon(0.01));
+}
+
 TEST_CASE("A box spinning on its face stops at the rate Coulomb friction over a uniformly pressed square predicts",
           "[friction][closed_form]") {
   // Torque μ m g ρ with ρ = s (√2 + ln(1 + √2)) / 6 the mean distance of a square of side s

@@ -22,6 +22,7 @@ int World::addLaunched(const RigidBody& body, const std::string& name, double ti
   RigidBody waiting = RigidBody::immovableBox(body.halfExtents);
   waiting.s.x = body.s.x;
   waiting.s.q = body.s.q;
+  waiting.friction = body.friction;
   const int index = add(waiting, name);
   launches.push_back({index, time, body.mass, body.v, body.omega, false});
   return index;
@@ -33,6 +34,7 @@ int World::applyLaunches(double t) {
     if (l.done || l.time > t) continue;
     const BodyState pose = bodies[l.body].s;
     RigidBody body = RigidBody::box(bodies[l.body].halfExtents, l.mass);
+    body.friction = bodies[l.body].friction;  // its Coulomb friction, waiting and moving
     body.s.x = pose.x;
     body.s.q = pose.q;
     body.updateDerived();

@@ -71,10 +71,11 @@ class World {
   int addGround(double topY = 0.0, double halfSize = 50.0, double halfThickness = 0.5);
 
   /// Adds a movable box that waits, immovable, at its pose until `time` (s), then moves with
-  /// the given velocities. Returns its index.
+  /// the given velocities. It keeps its friction, waiting and moving. Returns its index.
   int addLaunched(const RigidBody& body, const std::string& name, double time);
   /// Launches every waiting body whose time is <= t (s): it gets its mass and inertia back and
-  /// its launch velocities. Returns how many were launched.
+  /// its launch velocities, and keeps the friction it waited with. Returns how many were
+  /// launched.
   int applyLaunches(double t);
 
   /// Copies out the state of every body.
