@@ -67,6 +67,22 @@ double contactImpulse(RigidBody& a, RigidBody& b, const ImpulseContact& contact,
     };
     if (restarted || resting()) sum.normal = share;
   }
+  // An impact: a contact with no budget yet in the step (no normal impulse, no load it carries)
+  // that approaches faster than gravity's g Δt. Its friction's budget is the normal impulse the
+  // impact is about to get, Coulomb's law of impact (friction within μ times the impact's
+  // normal impulse), and not the tipping couple, which is a resting patch's. On the passes
+  // before alone it had none, and a pair that bounced apart is not gathered again: a cube landing
+  // on frictional ground kept its horizontal speed through every bounce.
+  if (sum.normal == 0.0 && !restarted && totals) {
+    const double approach = -relativeNormalVelocity(a, b, contact.ra, contact.rb, contact.normal);
+    if (approach > totals->restingSpeed()) {
+      const double k = a.invMass + b.invMass +
+                       rotationalInverseMass(a.Iinv, contact.ra, contact.normal) +
+                       rotationalInverseMass(b.Iinv, contact.rb, contact.normal);
+      if (k > 0.0) sum.normal = (1.0 + restitution) * approach / k;
+      patch.count = 0;
+    }
+  }
   applyPatchFriction(a, b, contact.ra, contact.rb, contact.normal, contact.friction, patch, sum);
   sum.normal = impulses;
   const double j = applyNewtonianImpulse(a, b, contact.ra, contact.rb, contact.normal, restitution);
