@@ -96,7 +96,8 @@ try {
     `- date: ${new Date().toISOString().slice(0, 16).replace('T', ' ')} UTC`,
     `- commit: ${git('rev-parse', '--short', 'HEAD')}${dirty ? ' with uncommitted changes to src/ or web/' : ''}`,
     `- browser: Chromium ${browser.version()}, headless, WebGL by SwiftShader (the page's drawing is paused)`,
-    `- packages: jolt-physics ${version('jolt-physics')}, @dimforge/rapier3d-compat ` +
+    // Package names in code spans: Doxygen, which builds these pages, reads @name as a command.
+    `- packages: \`jolt-physics\` ${version('jolt-physics')}, \`@dimforge/rapier3d-compat\` ` +
       `${version('@dimforge/rapier3d-compat')}, boxsim built by Emscripten (build-web/)`,
     `- machine: ${cpus()[0]?.model ?? 'unknown'}, ${cpus().length} logical cores, ` +
       `${Math.round(totalmem() / 2 ** 30)} GiB`,
