@@ -64,18 +64,29 @@ Incline incline(double degrees, const Friction& friction) {
   return s;
 }
 
-/// A unit cube resting on the ground with the given velocities, both with friction μ.
-World cubeOnGround(const Vec3& velocity, const Vec3& angularVelocity) {
+/// The ground with friction μ, restitution 0.
+World roughGround() {
   World world = boxsim::testing::groundWorld();
   world.restitution = 0.0;
   world.bodies[world.groundIndex].friction = {kMu, kMu};
+  return world;
+}
+
+/// A unit cube with friction μ resting on the ground's top face, with the given velocities.
+RigidBody roughCube(const Vec3& velocity, const Vec3& angularVelocity) {
   RigidBody box = RigidBody::box(Vec3::Constant(0.5), 1.0);
   box.s.x = Vec3(0.0, 0.5, 0.0);
   box.friction = {kMu, kMu};
   box.updateDerived();
   box.setVelocity(velocity);
   box.setAngularVelocity(angularVelocity);
-  world.add(box, "box");
+  return box;
+}
+
+/// A unit cube resting on the ground with the given velocities, both with friction μ.
+World cubeOnGround(const Vec3& velocity, const Vec3& angularVelocity) {
+  World world = roughGround();
+  world.add(roughCube(velocity, angularVelocity), "box");
   return world;
 }
 
@@ -210,15 +221,8 @@ TEST_CASE("A box launched along the ground keeps its friction and slides v0 squa
   // rates of DAMPENOBJECTS L4-L5 stand in for friction where there is none), 19 m/s after a
   // step at 20 m/s where Coulomb leaves 19.92.
   const double v0 = 5.0;
-  World world = boxsim::testing::groundWorld();
-  world.restitution = 0.0;
-  world.bodies[world.groundIndex].friction = {kMu, kMu};
-  RigidBody shot = RigidBody::box(Vec3::Constant(0.5), 1.0);
-  shot.s.x = Vec3(0.0, 0.5, 0.0);
-  shot.friction = {kMu, kMu};
-  shot.updateDerived();
-  shot.setVelocity(Vec3(v0, 0.0, 0.0));
-  const int index = world.addLaunched(shot, "shot", 0.0);
+  World world = roughGround();
+  const int index = world.addLaunched(roughCube(Vec3(v0, 0.0, 0.0), Vec3::Zero()), "shot", 0.0);
   CHECK(world.bodies[static_cast<std::size_t>(index)].friction.muDynamic == kMu);
   world.applyLaunches(0.0);
   const RigidBody& launched = world.bodies[static_cast<std::size_t>(index)];
