@@ -151,8 +151,9 @@ std::vector<double> Demo::halfExtents() const {
 std::vector<double> Demo::sceneBodies() const {
   std::vector<double> out;
   for (const RigidBody& b : world_.bodies) {
+    // 0 marks an immovable body: the ground, and a shot waiting for its launch (the engines
+    // give it the 1 kg of boxsim's shots when it is fired).
     const double mass = b.immovable ? 0.0 : b.mass;
-    // A shot waiting for its launch is immovable with the mass it gets back when fired.
     out.insert(out.end(), b.halfExtents.data(), b.halfExtents.data() + 3);
     out.insert(out.end(), b.s.x.data(), b.s.x.data() + 3);
     out.insert(out.end(), b.s.q.coeffs().data(), b.s.q.coeffs().data() + 4);
