@@ -280,6 +280,11 @@ window.boxsimPage = page;
 
 for (const id of ['scene', 'method', 'right', 'friction', 'sleep', 'stability', 'filter']) $(id).addEventListener('change', () => page.restart());
 $('restart').addEventListener('click', () => page.restart());
+// The controls fold away, so that side by side the left view is not hidden behind them.
+$('fold').addEventListener('click', () => {
+  $('controls').hidden = !$('controls').hidden;
+  $('fold').textContent = $('controls').hidden ? 'show' : 'hide';
+});
 window.addEventListener('resize', resize);
 resize();
 start();
