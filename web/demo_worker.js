@@ -106,7 +106,8 @@ function tick() {
 
 // The measures of the browser benchmark for one run of `scene` under `method`: the wall-clock
 // time of each step (ms), and after each step, untimed, the deepest penetration (boxsim's
-// separating-axis test on the run's poses, m), the movable bodies asleep and whether all are;
+// separating-axis test on the run's poses, m), the movable bodies asleep and whether all are,
+// and the poses after the last step;
 // one shot from the pyramid's eye point along −z after `shot` steps (never when negative).
 // With `checkMirror`, a boxsim run also measures itself as the other engines are measured, at
 // its poses (Demo.penetrationAt), and answers the largest difference from its own measure
@@ -114,7 +115,7 @@ function tick() {
 async function bench({ scene, method, friction, steps, shot, checkMirror = false }) {
   const run = await makeRun(method, { scene, friction, sleep: true, stability: true, filter: 'none' });
   const times = [], penetrations = [], asleep = [];
-  let mirrorGap = 0;
+  let mirrorGap = 0, poses = null;
   try {
     for (let k = 0; k < steps; ++k) {
       if (k === shot) run.shoot(0.5, 4.5, 12, 0, 0, -1);
@@ -129,10 +130,12 @@ async function bench({ scene, method, friction, steps, shot, checkMirror = false
       for (const f of flags) if (!(f & 1)) { ++movable; if (f & 2) ++sleeping; }
       asleep.push(movable > 0 && sleeping === movable ? -1 : sleeping);
     }
+    // The poses after the last step (7 a body, as poses() gives them), copied before the run goes.
+    poses = run.poses().slice();
   } finally {
     run.delete();
   }
-  return { times, penetrations, asleep, mirrorGap };
+  return { times, penetrations, asleep, mirrorGap, poses };
 }
 
 const commands = {
