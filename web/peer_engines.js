@@ -95,7 +95,7 @@ class PeerRun {
     }
     return largest;
   }
-  shotsLeft() { return this.firstShot + this.fired < this.count ? this.count - this.firstShot - this.fired : 0; }
+  shotsLeft() { return this.count - this.firstShot - this.fired; }
   shoot(fx, fy, fz, dx, dy, dz) {
     const length = Math.hypot(dx, dy, dz);
     if (this.shotsLeft() === 0 || !(length > 0)) return false;
