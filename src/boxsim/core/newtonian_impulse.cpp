@@ -26,8 +26,7 @@ double applyNewtonianImpulse(RigidBody& a, RigidBody& b, const Vec3& ra, const V
                              const Vec3& n, double restitution) {
   const double vMinus = relativeNormalVelocity(a, b, ra, rb, n);
   if (vMinus >= 0.0) return 0.0;
-  const double denominator = a.invMass + b.invMass + rotationalInverseMass(a.Iinv, ra, n) +
-                             rotationalInverseMass(b.Iinv, rb, n);
+  const double denominator = pairInverseMass(a, b, ra, rb, n);
   if (denominator <= 0.0) return 0.0;
   const double j = -(1.0 + restitution) * vMinus / denominator;
   const Vec3 impulse = j * n;

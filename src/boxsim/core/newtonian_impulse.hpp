@@ -31,6 +31,15 @@ inline double rotationalInverseMass(const Mat3& Iinv, const Vec3& r, const Vec3&
   return n.dot((Iinv * r.cross(n)).cross(r));
 }
 
+/// The pair's inverse mass along the unit normal n at the lever arms ra, rb (m): the change of
+/// their relative normal velocity there per unit normal impulse, 1/m_a + 1/m_b plus both
+/// rotational parts (rotationalInverseMass), 1/kg. The denominator of the Newtonian impulse below.
+inline double pairInverseMass(const RigidBody& a, const RigidBody& b, const Vec3& ra,
+                              const Vec3& rb, const Vec3& n) {
+  return a.invMass + b.invMass + rotationalInverseMass(a.Iinv, ra, n) +
+         rotationalInverseMass(b.Iinv, rb, n);
+}
+
 /// Applies the frictionless Newtonian impulse j n at world point p (m) along the unit normal n
 /// (pointing from a to b) when the bodies approach there, so that the relative normal velocity
 /// becomes -restitution times what it was (Witkin & Baraff eq. 8-18):

@@ -60,12 +60,13 @@ double contactImpulse(RigidBody& a, RigidBody& b, const ImpulseContact& contact,
   // μ = 0.5 had 52 J at 14 s instead of 4 J, the clump on the ground never slept whole).
   const double impulses = sum.normal;
   const double share = totals ? totals->supportShare(contact) : 0.0;
+  // m/s: how fast the pair approaches at the contact now (negative: parting); read by the
+  // resting test here and the impact test below.
+  const double approach =
+      totals ? -relativeNormalVelocity(a, b, contact.ra, contact.rb, contact.normal) : 0.0;
   if (share > impulses) {
-    const auto resting = [&] {
-      const double approach = -relativeNormalVelocity(a, b, contact.ra, contact.rb, contact.normal);
-      return approach >= 0.0 && approach <= totals->restingSpeed();
-    };
-    if (restarted || resting()) sum.normal = share;
+    const bool resting = approach >= 0.0 && approach <= totals->restingSpeed();
+    if (restarted || resting) sum.normal = share;
   }
   // An impact: a contact with no budget yet in the step (no normal impulse, no load it carries)
   // that approaches faster than gravity's g Δt. Its friction's budget is the normal impulse the
@@ -73,15 +74,10 @@ double contactImpulse(RigidBody& a, RigidBody& b, const ImpulseContact& contact,
   // normal impulse), and not the tipping couple, which is a resting patch's. On the passes
   // before alone it had none, and a pair that bounced apart is not gathered again: a cube landing
   // on frictional ground kept its horizontal speed through every bounce.
-  if (sum.normal == 0.0 && !restarted && totals) {
-    const double approach = -relativeNormalVelocity(a, b, contact.ra, contact.rb, contact.normal);
-    if (approach > totals->restingSpeed()) {
-      const double k = a.invMass + b.invMass +
-                       rotationalInverseMass(a.Iinv, contact.ra, contact.normal) +
-                       rotationalInverseMass(b.Iinv, contact.rb, contact.normal);
-      if (k > 0.0) sum.normal = (1.0 + restitution) * approach / k;
-      patch.count = 0;
-    }
+  if (sum.normal == 0.0 && !restarted && totals && approach > totals->restingSpeed()) {
+    const double k = pairInverseMass(a, b, contact.ra, contact.rb, contact.normal);
+    if (k > 0.0) sum.normal = (1.0 + restitution) * approach / k;
+    patch.count = 0;
   }
   applyPatchFriction(a, b, contact.ra, contact.rb, contact.normal, contact.friction, patch, sum);
   sum.normal = impulses;
