@@ -28,6 +28,19 @@ struct BodyMomenta {
   }
 };
 
+/// What COLLIDE may change of a pair's friction sums, to tell whether it did, bit for bit.
+struct SumBits {
+  double normal = 0.0, torsional = 0.0;
+  Vec3 tangential = Vec3::Zero(), couple = Vec3::Zero();
+  SumBits() = default;
+  explicit SumBits(const FrictionSum& sum)
+      : normal(sum.normal), torsional(sum.torsional), tangential(sum.tangential), couple(sum.couple) {}
+  bool same(const FrictionSum& sum) const {
+    return sameBits(normal, sum.normal) && sameBits(torsional, sum.torsional) &&
+           sameBits(tangential, sum.tangential) && sameBits(couple, sum.couple);
+  }
+};
+
 /// COLLIDE L5-L6, L8: both bodies get deltaV, then the Newtonian impulse at the contact (its
 /// point found by COLLIDE L7, ContactNormalTracker::contactOf); returns j.
 double impulseWithGravity(RigidBody& a, RigidBody& b, const ImpulseContact& contact,
@@ -159,12 +172,18 @@ PassResult impulsePass(World& world, double dt, double restitution, GravityMode 
     // unless the islands need to know which.
     const bool watch = !result.changed || (islands && !islands->changed(body));
     const BodyMomenta beforeA(world.bodies[c.a]), beforeB(world.bodies[c.b]);
+    const bool frictional = watch && totals && !c.friction.frictionless();
+    const SumBits sumBefore = frictional ? SumBits(totals->at(c.a, c.b)) : SumBits();
     if (beforeCollide) beforeCollide(world, c, call);
     if (touched) (*touched)[c.a] = (*touched)[c.b] = 1;
     const double j = collide(world, c, restitution, impulseGravity, dt, stable, totals);
     if (j > 0.0) ++result.impulses;
     if (!watch) continue;
-    const bool changed = !beforeA.same(world.bodies[c.a]) || !beforeB.same(world.bodies[c.b]);
+    // With friction, the pair's sums (FrictionTotals) are state too, which the momenta do not
+    // show: an impulse too small to change them, or one COLLIDE L11-L14 takes back, still grows
+    // the budget, and a friction increment below their rounding still adds to the sums.
+    const bool changed = !beforeA.same(world.bodies[c.a]) || !beforeB.same(world.bodies[c.b]) ||
+                         (frictional && !sumBefore.same(totals->at(c.a, c.b)));
     result.changed = result.changed || changed;
     if (islands && (changed || (settling == IslandSettling::Unapproached && j > 0.0)))
       islands->markChanged(body);
