@@ -192,7 +192,8 @@ TEST_CASE("Damped integration gives the same bits whether or not it stops the co
 /// towards the centre) with Coulomb friction (mu = 0.5) and restitution 0.5. Its cubes meet in
 /// mid-air in islands that settle. A friction impulse below the rounding of the momenta still
 /// adds to its pair's sums, and an island counted as settled by its momenta alone skipped the
-/// passes that would have added more: the bits parted from A.2's as written at step 82.
+/// passes that would have added more: the bits parted from A.2's as written at step 82. Run with
+/// the passes alone (DampedIntegrationParams::shockPropagation off), where it showed.
 World frictionalMidAirClump() {
   World world;
   world.addGround(0.0, 150.0);
@@ -246,6 +247,7 @@ TEST_CASE("Damped integration gives the same bits whether or not settled islands
                           frictionalMidAirClump()};
   for (const World& start : scenes) {
     const bool isRicochet = &start == &scenes[3];
+    const bool passesAlone = &start == &scenes[4];
     std::vector<double> states[2];
     long skipped[2] = {0, 0};
     for (int islands = 0; islands < 2; ++islands) {
@@ -253,6 +255,7 @@ TEST_CASE("Damped integration gives the same bits whether or not settled islands
       DampedIntegrationParams params;
       params.islandSettling = islands == 1;
       params.stopUnchangedCollisionPasses = islands == 1;
+      params.shockPropagation = !passesAlone;
       DampedIntegrationStepper stepper(params);
       World world = start;
       for (int k = 0; k < steps; ++k) {

@@ -35,6 +35,8 @@ std::map<std::string, std::string> DampedIntegrationStepper::parameters() const 
   parameters.merge(std::map<std::string, std::string>{
       {"damp", params_.damp ? "on" : "off"},
       {"damp_colliding_bodies", params_.dampCollidingBodies ? "on" : "off"},
+      {"friction_shock_propagation", params_.shockPropagation ? "on" : "off"},
+      {"shock_resting_speed_g_dt", shortestText(params_.shockRestingSpeed)},
       {"fix_contact_constraints", params_.fixContactConstraints ? "on" : "off"},
       {"geometric_stability", !params_.useGeometricStability            ? "off"
                                   : params_.geometricStability.underLoad ? "under_load"
@@ -175,6 +177,15 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   clock.lap(&DampedStepProfile::collisionPasses);
   // DAMPEDINTEGRATION L2: RESOLVECONTACTS.
   resolveContacts(world, dt, margin, touched, totals, stats);
+  // DEVIATION(A.2, §2.5.2): with friction, shock propagation settles the leaning columns the
+  // passes leave falling (propagateShockDamped).
+  if (friction && params_.shockPropagation) {
+    // Every island, those the contact passes settled too: the sweep is not another such pass.
+    if (ContactIslands* settled = gathering_.islands()) settled->activateAll();
+    stats.events += propagateShockDamped(
+        world, dt, margin, gathering_, stable_,
+        params_.shockRestingSpeed * world.gravity.norm() * dt, shockLevels_);
+  }
   clock.lap(&DampedStepProfile::contactPasses);
   // DAMPEDINTEGRATION L3: IntegrateObjectVelocities (sleeping bodies stand immovable and are
   // skipped).

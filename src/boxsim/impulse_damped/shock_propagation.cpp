@@ -3,51 +3,85 @@
 #include "boxsim/impulse_damped/shock_propagation.hpp"
 
 #include <algorithm>
-#include <deque>
 #include <tuple>
 
 #include "boxsim/collision/broad_phase.hpp"
 #include "boxsim/core/newtonian_impulse.hpp"
 #include "boxsim/impulse_damped/impulse_pass.hpp"
+#include "boxsim/impulse_damped/predicted_positions.hpp"
 
 namespace boxsim {
 
-std::vector<int> contactLevels(const World& world, const std::vector<ImpulseContact>& contacts) {
+void ShockLevels::compute(const World& world, const std::vector<ImpulseContact>& contacts) {
   const int n = static_cast<int>(world.bodies.size());
-  std::vector<std::vector<int>> neighbours(n);
+  // The contact graph as adjacency lists in one array: body i's neighbours are
+  // neighbours_[start_[i] .. start_[i + 1]), in the order of `contacts`.
+  start_.assign(static_cast<std::size_t>(n) + 1, 0);
   for (const ImpulseContact& c : contacts) {
-    neighbours[c.a].push_back(c.b);
-    neighbours[c.b].push_back(c.a);
+    ++start_[static_cast<std::size_t>(c.a) + 1];
+    ++start_[static_cast<std::size_t>(c.b) + 1];
   }
-  std::vector<int> level(n, n);
-  std::deque<int> queue;
+  for (int i = 0; i < n; ++i) start_[i + 1] += start_[i];
+  neighbours_.resize(static_cast<std::size_t>(start_[n]));
+  fill_.assign(start_.begin(), start_.end() - 1);
+  for (const ImpulseContact& c : contacts) {
+    neighbours_[static_cast<std::size_t>(fill_[c.a]++)] = c.b;
+    neighbours_[static_cast<std::size_t>(fill_[c.b]++)] = c.a;
+  }
+  // Breadth first from the immovable bodies, in body order.
+  level_.assign(static_cast<std::size_t>(n), n);
+  queue_.clear();
   for (int i = 0; i < n; ++i)
     if (world.bodies[i].immovable) {
-      level[i] = 0;
-      queue.push_back(i);
+      level_[i] = 0;
+      queue_.push_back(i);
     }
-  while (!queue.empty()) {
-    const int i = queue.front();
-    queue.pop_front();
-    for (int j : neighbours[i])
-      if (level[j] == n && !world.bodies[j].immovable) {
-        level[j] = level[i] + 1;
-        queue.push_back(j);
+  for (std::size_t head = 0; head < queue_.size(); ++head) {
+    const int i = queue_[head];
+    for (int k = start_[i]; k < start_[i + 1]; ++k) {
+      const int j = neighbours_[static_cast<std::size_t>(k)];
+      if (level_[j] == n && !world.bodies[j].immovable) {
+        level_[j] = level_[i] + 1;
+        queue_.push_back(j);
       }
+    }
   }
-  return level;
 }
+
+void ShockLevels::sort(const World& world, std::vector<ImpulseContact>& contacts) {
+  compute(world, contacts);
+  // (level, height, a, b) orders every pair of contacts: a pair of bodies has one contact.
+  const auto key = [&](const ImpulseContact& c) {
+    return std::make_tuple(std::max(level_[c.a], level_[c.b]), c.point.y(), c.a, c.b);
+  };
+  std::sort(contacts.begin(), contacts.end(),
+            [&](const ImpulseContact& l, const ImpulseContact& r) { return key(l) < key(r); });
+}
+
+std::vector<int> contactLevels(const World& world, const std::vector<ImpulseContact>& contacts) {
+  ShockLevels levels;
+  levels.compute(world, contacts);
+  return levels.levels();
+}
+
+namespace {
+/// A copy of `body` with zero inverse mass and inertia: it pushes and is not pushed.
+RigidBody heldCopy(const RigidBody& body) {
+  RigidBody fixed = body;
+  fixed.invMass = 0.0;
+  fixed.Iinv.setZero();
+  fixed.immovable = true;
+  return fixed;
+}
+}  // namespace
 
 int propagateShock(World& world, double dt, double margin, ContactGathering& gathering,
                    FrictionTotals* totals) {
   std::vector<ImpulseContact>& contacts =
       gathering.begin(world, dt, GravityMode::VelocityNoGravity, margin);
-  const std::vector<int> level = contactLevels(world, contacts);
-  const auto key = [&](const ImpulseContact& c) {
-    return std::make_tuple(std::max(level[c.a], level[c.b]), c.point.y(), c.a, c.b);
-  };
-  std::stable_sort(contacts.begin(), contacts.end(),
-                   [&](const ImpulseContact& l, const ImpulseContact& r) { return key(l) < key(r); });
+  ShockLevels levels;
+  levels.sort(world, contacts);
+  const std::vector<int>& level = levels.levels();
   int impulses = 0;
   for (const ImpulseContact& c : contacts) {
     RigidBody& a = world.bodies[c.a];
@@ -59,12 +93,65 @@ int propagateShock(World& world, double dt, double margin, ContactGathering& gat
       // The lower level has already been settled: it acts as if infinitely heavy. A copy with
       // zero inverse mass and inertia stands in for it, so only the upper body changes.
       const bool aLower = level[c.a] < level[c.b];
-      RigidBody fixed = aLower ? a : b;
-      fixed.invMass = 0.0;
-      fixed.Iinv.setZero();
-      fixed.immovable = true;
+      RigidBody fixed = heldCopy(aLower ? a : b);
       j = aLower ? contactImpulse(fixed, b, c, 0.0, totals) : contactImpulse(a, fixed, c, 0.0, totals);
     }
+    if (j > 0.0) ++impulses;
+  }
+  gathering.end(world);
+  return impulses;
+}
+
+int propagateShockDamped(World& world, double dt, double margin, ContactGathering& gathering,
+                         const std::vector<char>& stable, double restingSpeed,
+                         ShockLevels& levels) {
+  std::vector<ImpulseContact>& contacts =
+      gathering.begin(world, dt, GravityMode::VelocityPlusGravity, margin);
+  levels.sort(world, contacts);
+  const std::vector<int>& level = levels.levels();
+  const Vec3 deltaV = gravityVelocity(world, GravityMode::VelocityPlusGravity, dt);
+  const auto addVelocity = [](RigidBody& body, const Vec3& dv) {
+    if (body.immovable) return;
+    body.s.P += body.mass * dv;
+    body.updateVelocities();
+  };
+  const auto isStable = [&](int i) {
+    return !stable.empty() && stable[i] && !world.bodies[i].immovable;
+  };
+  int impulses = 0;
+  for (const ImpulseContact& c : contacts) {
+    RigidBody& a = world.bodies[c.a];
+    RigidBody& b = world.bodies[c.b];
+    // A geometrically stable body's vertical momentum is reset after every COLLIDE (L11-L14): its
+    // support is settled already. A pair of such bodies (or of one and an immovable one) sits out.
+    if ((a.immovable || isStable(c.a)) && (b.immovable || isStable(c.b))) continue;
+    // A pair that approaches faster than a resting one is colliding: the passes' business.
+    if (approachSpeed(world, c, GravityMode::VelocityPlusGravity, dt) > restingSpeed) continue;
+    // COLLIDE L1-L6: the velocity gravity is about to add, on both bodies.
+    addVelocity(a, deltaV);
+    addVelocity(b, deltaV);
+    // The normal impulse alone, frictionless (see the declaration).
+    double j = 0.0;
+    if (level[c.a] == level[c.b]) {
+      j = applyNewtonianImpulse(a, b, c.ra, c.rb, c.normal, 0.0);
+    } else if (level[c.a] < level[c.b]) {
+      RigidBody fixed = heldCopy(a);
+      j = applyNewtonianImpulse(fixed, b, c.ra, c.rb, c.normal, 0.0);
+    } else {
+      RigidBody fixed = heldCopy(b);
+      j = applyNewtonianImpulse(a, fixed, c.ra, c.rb, c.normal, 0.0);
+    }
+    // COLLIDE L9-L14.
+    addVelocity(a, -deltaV);
+    addVelocity(b, -deltaV);
+    for (int i : {c.a, c.b})
+      if (isStable(i)) {
+        RigidBody& body = world.bodies[i];
+        body.s.P.y() = 0.0;
+        body.s.L.x() = 0.0;
+        body.s.L.z() = 0.0;
+        body.updateVelocities();
+      }
     if (j > 0.0) ++impulses;
   }
   gathering.end(world);
