@@ -105,6 +105,12 @@ int propagateShock(World& world, double dt, double margin, ContactGathering& gat
 int propagateShockDamped(World& world, double dt, double margin, ContactGathering& gathering,
                          const std::vector<char>& stable, double restingSpeed,
                          ShockLevels& levels) {
+  // Every pair of movable bodies that are all geometrically stable sits out (below): with no
+  // other movable body, nothing is left to sweep, and no contact need be gathered.
+  bool anyUnstable = false;
+  for (std::size_t i = 0; i < world.bodies.size() && !anyUnstable; ++i)
+    anyUnstable = !world.bodies[i].immovable && (stable.empty() || !stable[i]);
+  if (!anyUnstable) return 0;
   std::vector<ImpulseContact>& contacts =
       gathering.begin(world, dt, GravityMode::VelocityPlusGravity, margin);
   levels.sort(world, contacts);
