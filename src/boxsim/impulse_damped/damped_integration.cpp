@@ -36,6 +36,7 @@ std::map<std::string, std::string> DampedIntegrationStepper::parameters() const 
       {"damp", params_.damp ? "on" : "off"},
       {"damp_colliding_bodies", params_.dampCollidingBodies ? "on" : "off"},
       {"friction_shock_propagation", params_.shockPropagation ? "on" : "off"},
+      {"shock_settled_speed_g_dt", shortestText(params_.shockSettledSpeed)},
       {"shock_resting_speed_g_dt", shortestText(params_.shockRestingSpeed)},
       {"fix_contact_constraints", params_.fixContactConstraints ? "on" : "off"},
       {"geometric_stability", !params_.useGeometricStability            ? "off"
@@ -182,9 +183,10 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   if (friction && params_.shockPropagation) {
     // Every island, those the contact passes settled too: the sweep is not another such pass.
     if (ContactIslands* settled = gathering_.islands()) settled->activateAll();
-    stats.events += propagateShockDamped(
-        world, dt, margin, gathering_, stable_,
-        params_.shockRestingSpeed * world.gravity.norm() * dt, shockLevels_);
+    const double gdt = world.gravity.norm() * dt;
+    stats.events += propagateShockDamped(world, dt, margin, gathering_, stable_,
+                                         params_.shockSettledSpeed * gdt,
+                                         params_.shockRestingSpeed * gdt, shockLevels_);
   }
   clock.lap(&DampedStepProfile::contactPasses);
   // DAMPEDINTEGRATION L3: IntegrateObjectVelocities (sleeping bodies stand immovable and are

@@ -65,12 +65,15 @@ struct DampedIntegrationParams {
   /// DEVIATION(A.2)): the passes do not settle the leaning columns friction holds. A frictionless
   /// world's step is \alg{A.2} whatever this says.
   bool shockPropagation = true;
-  /// In units of g Δt: the sweep leaves to the passes a pair approaching faster than this
-  /// (propagateShockDamped's restingSpeed). Measured with μ = 0.5: Fig. 6.6's shot base-20
-  /// pyramid, mean penetration over 8 s 1.1 mm at 2 (1.8 with no sweep, 1.8 at 3, 2.7 with no
-  /// bound); six seeds of the 343-cube pile, 296 boxes asleep at 10 s on average at 2 (266 at 3,
-  /// 210 with no sweep). Below 2 the sweep leaves more of the falling columns it is for.
-  double shockRestingSpeed = 2.0;
+  /// In units of g Δt: the sweep leaves to the passes a pair approaching slower than
+  /// shockSettledSpeed or faster than shockRestingSpeed (propagateShockDamped's settledSpeed and
+  /// restingSpeed). Measured with μ = 0.5, the bounds 0.1 and 2 against none: Fig. 6.6's shot
+  /// base-20 pyramid, mean penetration over 8 s 1.1 mm (2.7; 1.8 with no sweep); the shot
+  /// base-10 pyramid, every box asleep again (20 awake for good); two boxes gripping on a 30°
+  /// plank, 0.4 mm apart after 2 s as with no sweep (3.0). The columns the sweep is for approach
+  /// at about 1 g Δt.
+  double shockSettledSpeed = 0.1;
+  double shockRestingSpeed = 2.0;  ///< see shockSettledSpeed
 };
 
 /// Where the time of damped integration's steps goes, by stage of \alg{A.2} DAMPEDINTEGRATION:

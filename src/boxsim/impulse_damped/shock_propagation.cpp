@@ -103,8 +103,8 @@ int propagateShock(World& world, double dt, double margin, ContactGathering& gat
 }
 
 int propagateShockDamped(World& world, double dt, double margin, ContactGathering& gathering,
-                         const std::vector<char>& stable, double restingSpeed,
-                         ShockLevels& levels) {
+                         const std::vector<char>& stable, double settledSpeed,
+                         double restingSpeed, ShockLevels& levels) {
   // Every pair of movable bodies that are all geometrically stable sits out (below): with no
   // other movable body, nothing is left to sweep, and no contact need be gathered.
   bool anyUnstable = false;
@@ -131,8 +131,10 @@ int propagateShockDamped(World& world, double dt, double margin, ContactGatherin
     // A geometrically stable body's vertical momentum is reset after every COLLIDE (L11-L14): its
     // support is settled already. A pair of such bodies (or of one and an immovable one) sits out.
     if ((a.immovable || isStable(c.a)) && (b.immovable || isStable(c.b))) continue;
-    // A pair that approaches faster than a resting one is colliding: the passes' business.
-    if (approachSpeed(world, c, GravityMode::VelocityPlusGravity, dt) > restingSpeed) continue;
+    // A pair that approaches faster than a resting one is colliding, and one that approaches
+    // slower than a settled one is settled: both are the passes' business.
+    const double approach = approachSpeed(world, c, GravityMode::VelocityPlusGravity, dt);
+    if (approach > restingSpeed || approach < settledSpeed) continue;
     // COLLIDE L1-L6: the velocity gravity is about to add, on both bodies.
     addVelocity(a, deltaV);
     addVelocity(b, deltaV);

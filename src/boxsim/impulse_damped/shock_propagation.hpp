@@ -59,16 +59,20 @@ int propagateShock(World& world, double dt, double margin, ContactGathering& gat
 /// inverse mass). The sweep applies normal impulses alone: friction in it, on any budget, held
 /// every box of a tower over the box under it (five cubes on a 20° plank stood, where Coulomb
 /// topples them) and slowed stacks sliding on a plank. A pair whose movable bodies are all
-/// geometrically stable sits out (COLLIDE L11-L14 settles them), and so does a pair that
-/// approaches faster than `restingSpeed` (m/s, under the gravity trick, approachSpeed): a
-/// collision, which the passes resolve. Held against a fixed lower body, a body of a scattering
-/// heap was pushed into a third one with no pass left to part them (Fig. 6.6's shot base-20
-/// pyramid with μ = 0.5: mean penetration 2.7 mm and up to 31 mm, against 1.8 and 18 mm with
-/// no sweep). Positions are restored afterwards; momenta keep the change. `stable` is empty or
-/// has one flag per body (SETGEOMETRICALLYSTABLE); `levels` holds the working lists.
+/// geometrically stable sits out (COLLIDE L11-L14 settles them), and so does a pair whose
+/// approach under the gravity trick (approachSpeed, m/s) lies outside [settledSpeed,
+/// restingSpeed]. Faster, it is a collision, which the passes resolve: held against a fixed
+/// lower body, a body of a scattering heap was pushed into a third one with no pass left to
+/// part them (Fig. 6.6's shot base-20 pyramid with μ = 0.5: mean penetration 2.7 mm and up to
+/// 31 mm, against 1.8 and 18 mm with no sweep). Slower, the passes have settled it: a normal
+/// impulse off the centre there only turned boxes the passes' friction had stopped, and kept
+/// 20 boxes of the shot base-10 pyramid awake for good; and two boxes gripping each other on a
+/// 30° plank parted by 3.0 mm in 2 s (0.4 mm with no sweep), the sweep's impulses not being in
+/// friction's budget. Positions are restored afterwards; momenta keep the change. `stable` is
+/// empty or has one flag per body (SETGEOMETRICALLYSTABLE); `levels` holds the working lists.
 /// \return the number of impulses applied.
 int propagateShockDamped(World& world, double dt, double margin, ContactGathering& gathering,
-                         const std::vector<char>& stable, double restingSpeed,
-                         ShockLevels& levels);
+                         const std::vector<char>& stable, double settledSpeed,
+                         double restingSpeed, ShockLevels& levels);
 
 }  // namespace boxsim
