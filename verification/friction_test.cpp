@@ -448,9 +448,10 @@ TEST_CASE("A box at rest in a frictional heap does not report itself falling: sh
   // velocity after the step should be what one step of gravity leaves (g Δt down, as
   // DAMPENOBJECTS may not zero it; 2 g Δt allows as much again): the contacts resolved the
   // rest. Without the sweep, leaning columns ended each step falling about g Δt faster per box
-  // up the column (up to 1.2 m/s) while FIXCONTACTCONSTRAINTS lifted them back. Measured, the most such boxes at any of the
-  // instants looked at: 7 with the sweep, 35 without (1 with the sweep unbounded; its bounds,
-  // DampedIntegrationParams::shockSettledSpeed and shockRestingSpeed, leave some to the passes).
+  // up the column (up to 1.2 m/s) while FIXCONTACTCONSTRAINTS lifted them back. Measured, the
+  // most such boxes at any of the instants looked at: 7 with the sweep, 35 without (1 with the
+  // sweep unbounded; its bounds, DampedIntegrationParams::shockSettledSpeed and
+  // shockRestingSpeed, leave some to the passes).
   const auto fallingAtRest = [](bool shock) {
     Scene scene = parseScene(R"({"restitution": 0, "friction": 0.5, "ground": {"half_size": 20},
         "builders": [{"type": "clump", "count": 343, "size": 1, "mass": 1, "spacing": 1.5,

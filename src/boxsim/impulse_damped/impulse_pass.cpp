@@ -34,7 +34,10 @@ struct SumBits {
   Vec3 tangential = Vec3::Zero(), couple = Vec3::Zero();
   SumBits() = default;
   explicit SumBits(const FrictionSum& sum)
-      : normal(sum.normal), torsional(sum.torsional), tangential(sum.tangential), couple(sum.couple) {}
+      : normal(sum.normal),
+        torsional(sum.torsional),
+        tangential(sum.tangential),
+        couple(sum.couple) {}
   bool same(const FrictionSum& sum) const {
     return sameBits(normal, sum.normal) && sameBits(torsional, sum.torsional) &&
            sameBits(tangential, sum.tangential) && sameBits(couple, sum.couple);
