@@ -11,12 +11,20 @@
 
 namespace boxsim {
 
-namespace {
 void addVelocity(RigidBody& body, const Vec3& deltaV) {
   if (body.immovable) return;
   body.s.P += body.mass * deltaV;
   body.v = body.invMass * body.s.P;  // L is unchanged, so ω = I⁻¹ L is too
 }
+
+void holdGeometricallyStable(RigidBody& body) {
+  body.s.P.y() = 0.0;
+  body.s.L.x() = 0.0;
+  body.s.L.z() = 0.0;
+  body.updateVelocities();
+}
+
+namespace {
 
 /// What COLLIDE may change of a body, to tell whether it did, bit for bit.
 struct BodyMomenta {
@@ -121,10 +129,7 @@ double collide(World& world, const ImpulseContact& contact, double restitution, 
   for (RigidBody* body : {&a, &b}) {
     const int index = body == &a ? contact.a : contact.b;
     if (stable.empty() || !stable[index] || body->immovable) continue;
-    body->s.P.y() = 0.0;
-    body->s.L.x() = 0.0;
-    body->s.L.z() = 0.0;
-    body->updateVelocities();
+    holdGeometricallyStable(*body);
   }
   return j;
 }

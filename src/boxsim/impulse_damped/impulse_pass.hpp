@@ -32,6 +32,13 @@ namespace boxsim {
 double contactImpulse(RigidBody& a, RigidBody& b, const ImpulseContact& contact, double restitution,
                       FrictionTotals* totals, bool restarted = false);
 
+/// COLLIDE L6 and L10 for one body: `deltaV` (m/s) added to its velocity, unless immovable.
+void addVelocity(RigidBody& body, const Vec3& deltaV);
+
+/// COLLIDE L11-L14 for one geometrically stable body: it neither rises nor tips (its vertical
+/// momentum and the x and z components of its angular momentum are zeroed).
+void holdGeometricallyStable(RigidBody& body);
+
 /// COLLIDE(collision, restitution, gravity) of \alg{A.2}: with VelocityPlusGravity both bodies'
 /// velocities get g Δt added for the impulse and taken off after (\alg{COLLIDE L1-L6, L9-L10}); the
 /// Newtonian impulse with `restitution` acts at the contact's lever arms ra, rb along its normal

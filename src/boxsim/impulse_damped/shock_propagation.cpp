@@ -116,11 +116,6 @@ int propagateShockDamped(World& world, double dt, double margin, ContactGatherin
   levels.sort(world, contacts);
   const std::vector<int>& level = levels.levels();
   const Vec3 deltaV = gravityVelocity(world, GravityMode::VelocityPlusGravity, dt);
-  const auto addVelocity = [](RigidBody& body, const Vec3& dv) {
-    if (body.immovable) return;
-    body.s.P += body.mass * dv;
-    body.updateVelocities();
-  };
   const auto isStable = [&](int i) {
     return !stable.empty() && stable[i] && !world.bodies[i].immovable;
   };
@@ -153,13 +148,7 @@ int propagateShockDamped(World& world, double dt, double margin, ContactGatherin
     addVelocity(a, -deltaV);
     addVelocity(b, -deltaV);
     for (int i : {c.a, c.b})
-      if (isStable(i)) {
-        RigidBody& body = world.bodies[i];
-        body.s.P.y() = 0.0;
-        body.s.L.x() = 0.0;
-        body.s.L.z() = 0.0;
-        body.updateVelocities();
-      }
+      if (isStable(i)) holdGeometricallyStable(world.bodies[i]);
     if (j > 0.0) ++impulses;
   }
   gathering.end(world);
