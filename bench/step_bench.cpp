@@ -11,7 +11,8 @@
 /// quote), "CPU" the same in process CPU time; `contacts` and `sleeping` are per-step averages
 /// of StepStats over the timed steps; damped integration's cases add the ms per step of each
 /// stage of \alg{A.2} (DampedStepProfile: ms_start the contacts at the step's start, ms_collide
-/// and ms_contact the passes, ms_damp gravity and DAMPENOBJECTS, ms_fix FIXCONTACTCONSTRAINTS,
+/// and ms_contact the passes, ms_shock the friction's shock propagation sweep, ms_damp gravity
+/// and DAMPENOBJECTS, ms_fix FIXCONTACTCONSTRAINTS,
 /// ms_stable SETGEOMETRICALLYSTABLE, ms_sleep sleeping) and the separating-axis tests per step
 /// (sat; sat_pass those of the passes). A label states the target the project set for that case.
 /// The `_cv` row is the spread between repetitions: above a few percent, something else was
@@ -186,6 +187,7 @@ struct TimedCase {
       perStep("ms_start", 1e3 * profile.stepContacts);
       perStep("ms_collide", 1e3 * profile.collisionPasses);
       perStep("ms_contact", 1e3 * profile.contactPasses);
+      perStep("ms_shock", 1e3 * profile.shockSweep);
       perStep("ms_damp", 1e3 * profile.velocitiesAndDamping);
       perStep("ms_fix", 1e3 * profile.fixContacts);
       perStep("ms_stable", 1e3 * profile.stability);

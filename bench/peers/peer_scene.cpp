@@ -123,6 +123,7 @@ class BoxsimEngine : public PeerEngine {
         {"contacts at the step's start", profile_.stepContacts},
         {"collision passes (DAMPEDINTEGRATION L1)", profile_.collisionPasses},
         {"contact passes (DAMPEDINTEGRATION L2)", profile_.contactPasses},
+        {"shock propagation sweep (friction only)", profile_.shockSweep},
         {"gravity and damping (DAMPEDINTEGRATION L3-L4)", profile_.velocitiesAndDamping},
         {"FIXCONTACTCONSTRAINTS (DAMPEDINTEGRATION L5)", profile_.fixContacts},
         {"geometric stability (DAMPEDINTEGRATION L6)", profile_.stability},

@@ -86,6 +86,8 @@ struct DampedStepProfile {
   double stepContacts = 0.0;
   double collisionPasses = 0.0;       ///< s, RESOLVECOLLISIONS (\alg{DAMPEDINTEGRATION L1})
   double contactPasses = 0.0;         ///< s, RESOLVECONTACTS (\alg{DAMPEDINTEGRATION L2})
+  /// s, with friction, the shock propagation sweep after RESOLVECONTACTS (propagateShockDamped)
+  double shockSweep = 0.0;
   /// s, \alg{DAMPEDINTEGRATION L3-L4} (DAMPENOBJECTS' position update included)
   double velocitiesAndDamping = 0.0;
   /// s, FIXCONTACTCONSTRAINTS (\alg{DAMPEDINTEGRATION L5}) with its contacts found again
@@ -104,7 +106,8 @@ struct DampedStepProfile {
   long passes = 0;          ///< collision and contact passes run in them
   /// s, the sum of the stages.
   double total() const {
-    return stepContacts + collisionPasses + contactPasses + velocitiesAndDamping + fixContacts + stability + sleeping;
+    return stepContacts + collisionPasses + contactPasses + shockSweep + velocitiesAndDamping +
+           fixContacts + stability + sleeping;
   }
 };
 
