@@ -180,8 +180,10 @@ PassResult impulsePass(World& world, double dt, double restitution, GravityMode 
     // unless the islands need to know which.
     const bool watch = !result.changed || (islands && !islands->changed(body));
     const BodyMomenta beforeA(world.bodies[c.a]), beforeB(world.bodies[c.b]);
-    const bool frictional = watch && totals && !c.friction.frictionless();
-    const SumBits sumBefore = frictional ? SumBits(totals->at(c.a, c.b)) : SumBits();
+    // The pair's friction sums, looked up once: COLLIDE finds the same entry, inserting none.
+    const FrictionSum* sum =
+        watch && totals && !c.friction.frictionless() ? &totals->at(c.a, c.b) : nullptr;
+    const SumBits sumBefore = sum ? SumBits(*sum) : SumBits();
     if (beforeCollide) beforeCollide(world, c, call);
     if (touched) (*touched)[c.a] = (*touched)[c.b] = 1;
     const double j = collide(world, c, restitution, impulseGravity, dt, stable, totals);
@@ -191,7 +193,7 @@ PassResult impulsePass(World& world, double dt, double restitution, GravityMode 
     // show: an impulse too small to change them, or one COLLIDE L11-L14 takes back, still grows
     // the budget, and a friction increment below their rounding still adds to the sums.
     const bool changed = !beforeA.same(world.bodies[c.a]) || !beforeB.same(world.bodies[c.b]) ||
-                         (frictional && !sumBefore.same(totals->at(c.a, c.b)));
+                         (sum && !sumBefore.same(*sum));
     result.changed = result.changed || changed;
     if (islands && (changed || (settling == IslandSettling::Unapproached && j > 0.0)))
       islands->markChanged(body);

@@ -58,12 +58,6 @@ void ShockLevels::sort(const World& world, std::vector<ImpulseContact>& contacts
             [&](const ImpulseContact& l, const ImpulseContact& r) { return key(l) < key(r); });
 }
 
-std::vector<int> contactLevels(const World& world, const std::vector<ImpulseContact>& contacts) {
-  ShockLevels levels;
-  levels.compute(world, contacts);
-  return levels.levels();
-}
-
 namespace {
 /// A copy of `body` with zero inverse mass and inertia: it pushes and is not pushed.
 RigidBody heldCopy(const RigidBody& body) {
@@ -107,18 +101,19 @@ int propagateShockDamped(World& world, double dt, double margin, ContactGatherin
                          double restingSpeed, ShockLevels& levels) {
   // Every pair of movable bodies that are all geometrically stable sits out (below): with no
   // other movable body, nothing is left to sweep, and no contact need be gathered.
+  const auto isStable = [&](int i) {
+    return !stable.empty() && stable[i] && !world.bodies[i].immovable;
+  };
+  const int n = static_cast<int>(world.bodies.size());
   bool anyUnstable = false;
-  for (std::size_t i = 0; i < world.bodies.size() && !anyUnstable; ++i)
-    anyUnstable = !world.bodies[i].immovable && (stable.empty() || !stable[i]);
+  for (int i = 0; i < n && !anyUnstable; ++i)
+    anyUnstable = !world.bodies[i].immovable && !isStable(i);
   if (!anyUnstable) return 0;
   std::vector<ImpulseContact>& contacts =
       gathering.begin(world, dt, GravityMode::VelocityPlusGravity, margin);
   levels.sort(world, contacts);
   const std::vector<int>& level = levels.levels();
   const Vec3 deltaV = gravityVelocity(world, GravityMode::VelocityPlusGravity, dt);
-  const auto isStable = [&](int i) {
-    return !stable.empty() && stable[i] && !world.bodies[i].immovable;
-  };
   int impulses = 0;
   for (const ImpulseContact& c : contacts) {
     RigidBody& a = world.bodies[c.a];

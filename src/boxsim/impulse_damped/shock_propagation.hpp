@@ -13,16 +13,14 @@
 
 namespace boxsim {
 
-/// Levels of the contact graph: 0 for immovable bodies, then 1 + the smallest level of a body a
-/// body touches (breadth-first from the immovable ones, in body order). Bodies the search does
-/// not reach (a clump in flight) get level `bodies.size()`.
-std::vector<int> contactLevels(const World& world, const std::vector<ImpulseContact>& contacts);
-
-/// contactLevels with its working lists kept from call to call, so that a stepper that sweeps
-/// every step allocates nothing once they have grown to the scene.
+/// Levels of the contact graph, its working lists kept from call to call, so that a stepper that
+/// sweeps every step allocates nothing once they have grown to the scene: 0 for immovable
+/// bodies, then 1 + the smallest level of a body a body touches (breadth-first from the
+/// immovable ones, in body order). Bodies the search does not reach (a clump in flight) get level
+/// `bodies.size()`.
 class ShockLevels {
  public:
-  /// The levels of `contacts` (contactLevels), kept in levels().
+  /// The levels of `contacts`, kept in levels().
   void compute(const World& world, const std::vector<ImpulseContact>& contacts);
   /// compute, then `contacts` in the sweep's order: by the higher level of their two bodies,
   /// then by the height of their point, then by their bodies' indices.
