@@ -104,6 +104,9 @@ class ContactGathering {
   /// OncePerStep: narrow phases of pairs with a fast body at the poses of a pass, since
   /// construction, for tests and benches.
   long passNarrowPhases() const { return once_.passNarrowPhases(); }
+  /// OncePerStep: one-axis checks that answered for such a test (separatedBeyond), since
+  /// construction, for tests and benches.
+  long passAxisChecks() const { return once_.passAxisChecks(); }
   /// OncePerStep: bodies that sat a pass out because their island was settled (islands()),
   /// summed over the passes since construction, for tests and benches.
   long skippedBodyPasses() const { return once_.skippedBodyPasses(); }

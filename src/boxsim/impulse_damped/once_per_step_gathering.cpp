@@ -274,8 +274,11 @@ bool OncePerStepGathering::candidateManifold(const World& world, std::size_t k, 
   const Obb a = poses_.box(world, candidate.a);
   const Obb b = poses_.box(world, candidate.b);
   // Apart last time, and still apart along the same axis: the full test would say so too.
+  if (candidate.apart && separatedBeyond(a, b, candidate.axis, margin)) {
+    ++passAxisChecks_;
+    return false;
+  }
   ++passNarrowPhases_;
-  if (candidate.apart && separatedBeyond(a, b, candidate.axis, margin)) return false;
   const SeparatingAxisResult sat = separatingAxisTest(a, b);
   manifold = buildContactManifold(a, b, sat, margin);
   candidate.axis = sat;

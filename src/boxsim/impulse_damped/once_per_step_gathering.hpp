@@ -119,8 +119,11 @@ class OncePerStepGathering {
 
   /// Builds of the cache since construction (one narrow phase of the slow pairs each).
   long narrowPhases() const { return narrowPhases_; }
-  /// Narrow phases of pairs with a fast body at the poses of a pass, since construction.
+  /// Separating-axis tests of pairs with a fast body at the poses of a pass, since construction.
   long passNarrowPhases() const { return passNarrowPhases_; }
+  /// One-axis checks (separatedBeyond) that answered for such a test, since construction: a
+  /// pair apart in its last pass and still apart along the axis that parted it.
+  long passAxisChecks() const { return passAxisChecks_; }
   /// Bodies that sat a pass out because their island was settled, summed over the passes.
   long skippedBodyPasses() const { return skippedBodyPasses_; }
 
@@ -198,6 +201,7 @@ class OncePerStepGathering {
   bool anySkipped_ = false;           ///< this pass: some body's island is settled
   long narrowPhases_ = 0;
   long passNarrowPhases_ = 0;
+  long passAxisChecks_ = 0;
   long skippedBodyPasses_ = 0;
 };
 
