@@ -184,6 +184,10 @@ void applyRowImpulse(RigidBody& a, RigidBody& b, const FrictionRows& rows, const
 void applyPatchFriction(RigidBody& a, RigidBody& b, const Vec3& ra, const Vec3& rb, const Vec3& n,
                         const Friction& friction, const ContactPatch& patch, FrictionSum& sum) {
   if (a.immovable && b.immovable) return;
+  // No budget and nothing applied yet: Coulomb allows no friction at all, and the sums stay 0.
+  if (sum.normal == 0.0 && sum.torsional == 0.0 && sum.tangential.isZero(0.0) &&
+      sum.couple.isZero(0.0))
+    return;
   const bool torsion = patch.radius > 0.0;
   const bool tipping = patch.count >= 2;
   FrictionRows& rows = sum.rows;

@@ -133,7 +133,8 @@ struct ContactPatch {
 ///   contact holds only along itself).
 /// N = sum.normal. The change of the sums acts on the bodies (b: +J at x_b + rb and the angular
 /// impulse +A; a the opposite) unless it would raise the pair's kinetic energy, and `sum` is
-/// updated.
+/// updated. A contact with no budget (N = 0) whose sums are still zero gets no friction and
+/// nothing is computed: Coulomb's limit would take every row back to zero.
 /// DEVIATION(COLLIDE L7, Guendelman et al. 2003 §7): the thesis acts at one point per collision
 /// and is frictionless; Guendelman et al. apply a coupled sticking-or-sliding impulse at each
 /// point. At one point a friction impulse at the centre of a box's base has a moment no single
