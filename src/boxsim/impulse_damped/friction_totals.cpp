@@ -12,12 +12,15 @@ void FrictionTotals::shareWeights(const World& world, const std::vector<ImpulseC
   for (int i : shared_) {
     share_[static_cast<std::size_t>(i)] = 0.0;
     rises_[static_cast<std::size_t>(i)] = 0.0;
+    edgeCount_[static_cast<std::size_t>(i)] = 0;
   }
   shared_.clear();
   edges_.clear();
   const std::size_t n = world.bodies.size();
   share_.resize(n, 0.0);
   rises_.resize(n, 0.0);
+  edgeCount_.resize(n, 0);
+  edgeStart_.resize(n, 0);
   const double g = world.gravity.norm();
   if (!(g > 0.0)) return;
   up_ = -world.gravity / g;
@@ -42,20 +45,45 @@ void FrictionTotals::shareWeights(const World& world, const std::vector<ImpulseC
   const auto height = [&](int i) { return height_[static_cast<std::size_t>(i)]; };
   std::sort(shared_.begin(), shared_.end(),
             [&](int i, int j) { return height(i) > height(j) || (height(i) == height(j) && i < j); });
-  std::sort(edges_.begin(), edges_.end(), [](const Edge& x, const Edge& y) {
-    return x.carried < y.carried || (x.carried == y.carried && x.under < y.under);
-  });
+  // The carrying contacts grouped by the body they carry, each group by the body under it.
+  groupEdges();
   for (int i : shared_) share_[static_cast<std::size_t>(i)] = world.bodies[i].mass * g * dt;
   for (int i : shared_) {
     const std::size_t k = static_cast<std::size_t>(i);
     share_[k] /= rises_[k];  // load per unit rise
-    const auto first = std::lower_bound(edges_.begin(), edges_.end(), i,
-                                        [](const Edge& e, int carried) { return e.carried < carried; });
-    for (auto e = first; e != edges_.end() && e->carried == i; ++e) {
+    const auto first = grouped_.begin() + static_cast<std::ptrdiff_t>(edgeStart_[k]);
+    const auto last = first + static_cast<std::ptrdiff_t>(edgeCount_[k]);
+    for (auto e = first; e != last; ++e) {
       const std::size_t under = static_cast<std::size_t>(e->under);
       // A lower body that is itself carried takes this contact's part of the load on.
       if (rises_[under] > 0.0 && height(e->under) < height(i)) share_[under] += share_[k] * e->rise;
     }
+  }
+}
+
+void FrictionTotals::groupEdges() {
+  // A counting sort by carried body: each group's place, then the edges in their order.
+  for (const Edge& e : edges_) ++edgeCount_[static_cast<std::size_t>(e.carried)];
+  std::size_t place = 0;
+  for (int i : shared_) {
+    const std::size_t k = static_cast<std::size_t>(i);
+    edgeStart_[k] = place;
+    place += edgeCount_[k];
+    edgeCount_[k] = 0;
+  }
+  grouped_.resize(edges_.size());
+  for (const Edge& e : edges_) {
+    const std::size_t k = static_cast<std::size_t>(e.carried);
+    grouped_[edgeStart_[k] + edgeCount_[k]++] = e;
+  }
+  // Within a group by the body under it. Contacts come in (a, b) order, which puts a group in
+  // that order already (the pairs (u, c) with u < c, then (c, u) with u > c), so this only checks.
+  for (int i : shared_) {
+    const std::size_t k = static_cast<std::size_t>(i);
+    const auto first = grouped_.begin() + static_cast<std::ptrdiff_t>(edgeStart_[k]);
+    const auto last = first + static_cast<std::ptrdiff_t>(edgeCount_[k]);
+    for (auto e = first + (first != last); e < last; ++e)
+      for (auto f = e; f != first && (f - 1)->under > f->under; --f) std::iter_swap(f - 1, f);
   }
 }
 

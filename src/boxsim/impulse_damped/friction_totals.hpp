@@ -57,7 +57,13 @@ class FrictionTotals {
   std::vector<double> rises_;   ///< per body: the sum of its supports' rises
   std::vector<int> shared_;     ///< the bodies whose share_ is set
   std::vector<double> height_;  ///< per body of shared_, m: its centre's height along up_
-  std::vector<Edge> edges_;     ///< the carrying contacts, by carried body
+  /// Groups edges_ by carried body (grouped_, edgeStart_, edgeCount_), each group in
+  /// increasing order of the body under it: the order a sort by (carried, under) gives.
+  void groupEdges();
+  std::vector<Edge> edges_;     ///< the carrying contacts, in the order of the contacts
+  std::vector<Edge> grouped_;   ///< edges_ grouped (groupEdges)
+  std::vector<std::size_t> edgeStart_;  ///< per body of shared_: its group's first place
+  std::vector<std::size_t> edgeCount_;  ///< per body: its group's size (0 outside shared_)
   Vec3 up_ = Vec3::UnitY();     ///< against gravity
   double restingSpeed_ = 0.0;   ///< m/s, g Δt
 };
