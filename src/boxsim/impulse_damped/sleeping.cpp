@@ -6,6 +6,7 @@
 #include "boxsim/core/newtonian_impulse.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -219,13 +220,25 @@ void Sleeping::end(World& world, const std::vector<ContactManifold>& contacts,
   // The contact graph at the end of the step: what the narrow phase found, plus the remembered
   // manifolds of pairs it skipped because both bodies stood immovable (neither has moved).
   std::vector<ContactManifold>& next = next_;
-  next.assign(contacts.begin(), contacts.end());
-  next.reserve(contacts.size() + resting_.size());
+  std::vector<ContactManifold>& remembered = remembered_;
+  remembered.clear();
   for (const ContactManifold& c : resting_)
-    if (world.bodies[c.a].immovable && world.bodies[c.b].immovable) next.push_back(c);
-  std::sort(next.begin(), next.end(), [](const ContactManifold& l, const ContactManifold& r) {
+    if (world.bodies[c.a].immovable && world.bodies[c.b].immovable) remembered.push_back(c);
+  // By pair. The step's contacts and the remembered ones come in that order each (and a pair
+  // is in one list only), so merging them is sorting them; sorted otherwise.
+  const auto byPair = [](const ContactManifold& l, const ContactManifold& r) {
     return l.a < r.a || (l.a == r.a && l.b < r.b);
-  });
+  };
+  next.clear();
+  if (std::is_sorted(contacts.begin(), contacts.end(), byPair) &&
+      std::is_sorted(remembered.begin(), remembered.end(), byPair)) {
+    std::merge(contacts.begin(), contacts.end(), remembered.begin(), remembered.end(),
+               std::back_inserter(next), byPair);
+  } else {
+    next.assign(contacts.begin(), contacts.end());
+    next.insert(next.end(), remembered.begin(), remembered.end());
+    std::sort(next.begin(), next.end(), byPair);
+  }
   resting_.swap(next);
   indexResting(n);
   // A sleeping body that an awake one penetrates beyond the slop (FIXCONTACTCONSTRAINTS could

@@ -173,6 +173,7 @@ class Sleeping {
   // Working lists kept for their room: the contact graph end() builds, the bodies begin() finds
   // disturbed, wake()'s bodies to wake, skippedContacts()' answer.
   std::vector<ContactManifold> next_;
+  std::vector<ContactManifold> remembered_;  ///< end(): the remembered manifolds still standing
   std::vector<int> disturbed_;
   std::vector<int> pending_;
   mutable std::vector<ContactManifold> skipped_;
