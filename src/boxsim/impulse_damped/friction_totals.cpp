@@ -43,8 +43,7 @@ void FrictionTotals::shareWeights(const World& world, const std::vector<ImpulseC
   height_.resize(n);
   for (int i : shared_) height_[static_cast<std::size_t>(i)] = up_.dot(world.bodies[i].s.x);
   const auto height = [&](int i) { return height_[static_cast<std::size_t>(i)]; };
-  std::sort(shared_.begin(), shared_.end(),
-            [&](int i, int j) { return height(i) > height(j) || (height(i) == height(j) && i < j); });
+  sortByHeight(world);
   // The carrying contacts grouped by the body they carry, each group by the body under it.
   groupEdges();
   for (int i : shared_) share_[static_cast<std::size_t>(i)] = world.bodies[i].mass * g * dt;
@@ -59,6 +58,35 @@ void FrictionTotals::shareWeights(const World& world, const std::vector<ImpulseC
       if (rises_[under] > 0.0 && height(e->under) < height(i)) share_[under] += share_[k] * e->rise;
     }
   }
+}
+
+void FrictionTotals::sortByHeight(const World& world) {
+  // The order of every body by height (highest first, then by index) is kept for the step:
+  // the bodies stand where they stood in every pass. It stands while each body to sort has
+  // the height it was ordered by, bit for bit; picking those bodies out of it is then the
+  // sort of shared_ by the same comparison (a total order: no two bodies share an index).
+  const std::size_t n = world.bodies.size();
+  bool current = ordered_ && orderHeight_.size() == n;
+  for (std::size_t k = 0; current && k < shared_.size(); ++k) {
+    const std::size_t i = static_cast<std::size_t>(shared_[k]);
+    current = sameBits(orderHeight_[i], height_[i]);
+  }
+  if (!current) {
+    orderHeight_.resize(n);
+    byHeight_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      orderHeight_[i] = up_.dot(world.bodies[i].s.x);
+      byHeight_[i] = static_cast<int>(i);
+    }
+    const auto height = [&](int i) { return orderHeight_[static_cast<std::size_t>(i)]; };
+    std::sort(byHeight_.begin(), byHeight_.end(), [&](int i, int j) {
+      return height(i) > height(j) || (height(i) == height(j) && i < j);
+    });
+    ordered_ = true;
+  }
+  shared_.clear();
+  for (int i : byHeight_)
+    if (rises_[static_cast<std::size_t>(i)] > 0.0) shared_.push_back(i);
 }
 
 void FrictionTotals::groupEdges() {

@@ -21,8 +21,11 @@ class FrictionTotals {
  public:
   /// The sums of the pair (a, b), created empty on first use.
   FrictionSum& at(int a, int b) { return sums_.at(a, b); }
-  /// Forgets every pair: called as a step begins.
-  void clear() { sums_.clear(); }
+  /// Forgets every pair, and the bodies' order by height: called as a step begins.
+  void clear() {
+    sums_.clear();
+    ordered_ = false;
+  }
 
   /// The load each movable body puts on each of its supports among the frictional `contacts`
   /// of a pass (impulse or damped integration): its weight m |g| Δt (N s) plus the shares of the
@@ -57,6 +60,12 @@ class FrictionTotals {
   std::vector<double> rises_;   ///< per body: the sum of its supports' rises
   std::vector<int> shared_;     ///< the bodies whose share_ is set
   std::vector<double> height_;  ///< per body of shared_, m: its centre's height along up_
+  /// Sorts shared_ from the highest body down (ties by index), from the order of every body by
+  /// height kept for the step (byHeight_), made anew when a body to sort stands elsewhere.
+  void sortByHeight(const World& world);
+  std::vector<int> byHeight_;         ///< every body, highest first (ties by index)
+  std::vector<double> orderHeight_;   ///< per body, m: the height byHeight_ was made with
+  bool ordered_ = false;              ///< byHeight_ was made in this step
   /// Groups edges_ by carried body (grouped_, edgeStart_, edgeCount_), each group in
   /// increasing order of the body under it: the order a sort by (carried, under) gives.
   void groupEdges();
