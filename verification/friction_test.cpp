@@ -20,6 +20,7 @@
 #include "boxsim/core/newtonian_impulse.hpp"
 #include "boxsim/impulse_damped/damped_integration.hpp"
 #include "boxsim/impulse_damped/dampen_objects.hpp"
+#include "boxsim/impulse_damped/friction_totals.hpp"
 #include "boxsim/impulse_damped/impulse_stepper.hpp"
 #include "boxsim/io/scene.hpp"
 #include "boxsim/io/scene_builders.hpp"
@@ -427,6 +428,68 @@ TEST_CASE("A technique without a friction model refuses a world with friction in
   World frictionless = boxsim::testing::groundWorld();
   for (const std::string& method : methodNames())
     CHECK_NOTHROW(requireFrictionModel(frictionless, *makeStepper(method)));
+}
+
+TEST_CASE("Friction's least budget is the load each contact carries, worked out from the top down, "
+          "whatever the order of the contacts",
+          "[friction]") {
+  // A column of three 1 kg cubes on the ground, and a fourth cube bridging the top one and a
+  // fifth on the ground beside the column: every contact vertical, so each carries its share of
+  // the weight above it (n · up = 1). Bottom contact of the column: cubes 1 + 2 + 3 and half of
+  // cube 4, 3.5 m g Δt; cube 5 under the other half, 1.5 m g Δt.
+  World world = boxsim::testing::groundWorld();
+  const Vec3 h(0.5, 0.5, 0.5);
+  const int c1 = addBox(world, "c1", h, Vec3(0, 0.5, 0));
+  const int c2 = addBox(world, "c2", h, Vec3(0, 1.5, 0));
+  const int c3 = addBox(world, "c3", h, Vec3(0, 2.5, 0));
+  const int c5 = addBox(world, "c5", h, Vec3(2, 2.5, 0));
+  const int c4 = addBox(world, "c4", h, Vec3(1, 3.5, 0));
+  for (RigidBody& body : world.bodies) body.friction = {kMu, kMu};
+  const auto contact = [&](int lower, int upper) {
+    // a < b with the normal from a to b, as the gathering gives them.
+    ImpulseContact c;
+    c.a = std::min(lower, upper);
+    c.b = std::max(lower, upper);
+    c.normal = lower < upper ? Vec3::UnitY() : Vec3(-Vec3::UnitY());
+    c.friction = {kMu, kMu};
+    return c;
+  };
+  const int ground = 0;
+  std::vector<ImpulseContact> contacts;
+  for (const auto& [lower, upper] : {std::pair(ground, c1), std::pair(ground, c5),
+                                     std::pair(c1, c2), std::pair(c2, c3), std::pair(c3, c4),
+                                     std::pair(c5, c4)})
+    contacts.push_back(contact(lower, upper));
+  std::sort(contacts.begin(), contacts.end(), [](const ImpulseContact& x, const ImpulseContact& y) {
+    return std::pair(x.a, x.b) < std::pair(y.a, y.b);
+  });
+  const double w = kG * kDt;  // one cube's weight over a step, N s
+  FrictionTotals totals;
+  totals.shareWeights(world, contacts, kDt);
+  std::vector<double> shares;
+  for (const ImpulseContact& c : contacts) shares.push_back(totals.supportShare(c));
+  const auto shareOf = [&](int lower, int upper) {
+    const ImpulseContact wanted = contact(lower, upper);
+    for (std::size_t k = 0; k < contacts.size(); ++k)
+      if (contacts[k].a == wanted.a && contacts[k].b == wanted.b) return shares[k];
+    return -1.0;
+  };
+  CHECK(shareOf(c3, c4) == Approx(0.5 * w).epsilon(1e-12));
+  CHECK(shareOf(c5, c4) == Approx(0.5 * w).epsilon(1e-12));
+  CHECK(shareOf(c2, c3) == Approx(1.5 * w).epsilon(1e-12));
+  CHECK(shareOf(c1, c2) == Approx(2.5 * w).epsilon(1e-12));
+  CHECK(shareOf(ground, c1) == Approx(3.5 * w).epsilon(1e-12));
+  CHECK(shareOf(ground, c5) == Approx(1.5 * w).epsilon(1e-12));
+  // The same shares, bit for bit, from the contacts in the reverse order, and from a second
+  // call on the same table (which keeps the order by height of its first).
+  std::vector<ImpulseContact> reversed(contacts.rbegin(), contacts.rend());
+  FrictionTotals other;
+  other.shareWeights(world, reversed, kDt);
+  totals.shareWeights(world, reversed, kDt);
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    CHECK(sameBits(other.supportShare(contacts[k]), shares[k]));
+    CHECK(sameBits(totals.supportShare(contacts[k]), shares[k]));
+  }
 }
 
 TEST_CASE("Friction is deterministic: the same frictional pile twice gives the same bits",
