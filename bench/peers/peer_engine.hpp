@@ -71,8 +71,8 @@ struct StepWork {
   double passNarrowPhasesPerTouchingPair = 0.0;
   /// Tests handed back for unchanged poses (KeptNarrowPhase) per such pair per step.
   double keptPerTouchingPair = 0.0;
-  /// One-axis checks that answered for a test in the passes (separatedBeyond), apart from the
-  /// tests above, per such pair per step.
+  /// One-axis checks that answered for a test (separatedBeyond: a pair apart along the axis of
+  /// its last test), apart from the tests above, per such pair per step.
   double axisChecksPerTouchingPair = 0.0;
   double passesPerStep = 0.0;  ///< collision and contact passes per step
 };

@@ -351,10 +351,9 @@ std::string markdownPage(const std::vector<SceneResults>& scenes, const RunSetup
       << "body awake): separating-axis tests run per pair in contact at a step's end, per step "
       << "(in brackets: of those, the tests in the passes, of pairs with a fast body at their "
       << "predicted poses; then the tests handed back for poses that had not changed since they "
-      << "were run, KeptNarrowPhase); after the plus, the one-axis checks in the passes that "
-      << "answered for a test, a pair apart along the axis that parted it in its last pass "
-      << "(separatedBeyond), per pair in contact per step; and collision and contact passes per "
-      << "step.\n\n"
+      << "were run, KeptNarrowPhase); after the plus, the one-axis checks that answered for a "
+      << "test, a pair apart along the axis of its last test (separatedBeyond), per pair in "
+      << "contact per step; and collision and contact passes per step.\n\n"
       << "## Summary\n\n" << summary(scenes) << aims(scenes) << stages(scenes) << realTime(scenes) << memory(scenes)
       << "## Table\n\n"
       << "| scene | boxes | engine | mean ms/step | median | p95 | rep means | mean ÷ boxsim damped's "

@@ -138,7 +138,7 @@ class BoxsimEngine : public PeerEngine {
     return StepWork{static_cast<double>(profile_.narrowPhases) / pairs,
                     static_cast<double>(profile_.passNarrowPhases) / pairs,
                     static_cast<double>(profile_.keptNarrowPhases) / pairs,
-                    static_cast<double>(profile_.passAxisChecks) / pairs,
+                    static_cast<double>(profile_.axisChecks) / pairs,
                     static_cast<double>(profile_.passes) / static_cast<double>(profile_.workSteps)};
   }
 

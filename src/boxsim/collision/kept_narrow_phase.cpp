@@ -66,6 +66,23 @@ ContactManifold KeptNarrowPhase::collide(int i, const Obb& a, int j, const Obb& 
     ++tests_;
     return buildContactManifold(a, b, separatingAxisTest(a, b), margin);
   }
+  // Apart at its last test, and still apart beyond the margin along that test's axis: the test
+  // would find no point either.
+  if (static_cast<std::size_t>(i) < kept_.size()) {
+    std::vector<Entry>& list = kept_[static_cast<std::size_t>(i)];
+    const auto last = std::find_if(list.begin(), list.end(), [j](const Entry& e) { return e.j == j; });
+    double depth = 0.0;
+    if (last != list.end() && last->result.depth < 0.0 &&
+        separatedBeyond(a, b, last->result, margin, SeparatingAxisParams{}, &depth)) {
+      last->step = step_ + 1;
+      ++axisChecks_;
+      ContactManifold apart;
+      apart.normal = last->result.normal;
+      apart.kind = last->result.kind;
+      apart.depth = depth;
+      return apart;
+    }
+  }
   const auto e = entry(i, a, j, b);
   // Nothing within the margin: buildContactManifold clips nothing either.
   if (e->result.depth <= -margin) return buildContactManifold(a, b, e->result, margin);

@@ -47,7 +47,11 @@ class KeptNarrowPhase {
   /// collideBoxes(a, b, margin) with the test taken from axis(i, a, j, b); m, margin >= 0.
   /// The clip of the incident face is kept with the test (ClippedContact: it does not depend on
   /// the margin), so the pair's manifold for another margin at the same poses costs no clipping.
-  /// Fields a and b of the manifold are left at -1, as collideBoxes leaves them.
+  /// A pair whose last test found it apart is first measured along that test's axis where it
+  /// stands now (separatedBeyond): when that settles it, the manifold has no points, as the
+  /// test's would, and its depth is the depth along that axis (<= -margin), not the test's;
+  /// the test is not run. Fields a and b of the manifold are left at -1, as collideBoxes
+  /// leaves them.
   ContactManifold collide(int i, const Obb& a, int j, const Obb& b, double margin);
   /// Ends a step: pairs not asked for in the step that ends are forgotten, so the store holds
   /// the pairs that are near now, not every pair that ever was.
@@ -60,6 +64,8 @@ class KeptNarrowPhase {
   /// Clips (clipContact) made since construction; the other manifolds of collide() came from a
   /// kept clip or had no points within their margin.
   long clips() const { return clips_; }
+  /// Tests collide() spared by a one-axis check (separatedBeyond) since construction.
+  long axisChecks() const { return axisChecks_; }
 
  private:
   /// What the store last saw of a body: its box, and a number that changes whenever the box
@@ -97,6 +103,7 @@ class KeptNarrowPhase {
   long tests_ = 0;
   long reuses_ = 0;
   long clips_ = 0;
+  long axisChecks_ = 0;
 };
 
 }  // namespace boxsim

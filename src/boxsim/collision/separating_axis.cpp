@@ -348,7 +348,7 @@ SeparatingAxisResult separatingAxisTest(const Obb& a, const Obb& b,
 }
 
 bool separatedBeyond(const Obb& a, const Obb& b, const SeparatingAxisResult& axis, double margin,
-                     const SeparatingAxisParams& params) {
+                     const SeparatingAxisParams& params, double* depthOut) {
   const Vec3 D = b.center - a.center;
   // C and its rows as separatingAxisTest forms them, entry for entry.
   const auto absC = [&](int i, int j) { return std::abs(a.axes.col(i).dot(b.axes.col(j))); };
@@ -370,7 +370,9 @@ bool separatedBeyond(const Obb& a, const Obb& b, const SeparatingAxisResult& axi
   const double tieWidth = faceTieWidth(a, b, params);
   // Twice the tie width: once for the full test's preference of a tied face or a face over an
   // edge, once (with the relative term) for the rounding of these few operations.
-  return depth + 2.0 * tieWidth + 1e-15 * std::abs(depth) <= -margin;
+  const bool apart = depth + 2.0 * tieWidth + 1e-15 * std::abs(depth) <= -margin;
+  if (apart && depthOut) *depthOut = depth;
+  return apart;
 }
 
 double depthAfterTranslationAtLeast(const Obb& a, const Obb& b, const SeparatingAxisResult& result,

@@ -74,8 +74,10 @@ SeparatingAxisResult separatingAxisTest(const Obb& a, const Obb& b,
 /// An edge axis too close to parallel to be tested (parallelCutoff) and NaN give false; false
 /// means only "run the full test".
 /// \param margin  m, >= 0
+/// \param depth   when given and the answer is true, receives the depth along the axis (m,
+///                 <= -margin)
 bool separatedBeyond(const Obb& a, const Obb& b, const SeparatingAxisResult& axis, double margin,
-                     const SeparatingAxisParams& params = {});
+                     const SeparatingAxisParams& params = {}, double* depth = nullptr);
 
 /// A lower bound (m) of separatingAxisTest(a', b', params).depth for boxes a' and b' that are a
 /// and b moved apart or together by a translation of length at most `translation` (m), their

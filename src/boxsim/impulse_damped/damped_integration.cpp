@@ -165,7 +165,7 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   FrictionTotals* const totals = friction ? &frictionTotals_ : nullptr;
   // The narrow phases so far, for the profile's count of this step's.
   const long passTestsBefore = gathering_.passNarrowPhases();
-  const long axisChecksBefore = gathering_.passAxisChecks();
+  const long axisChecksBefore = gathering_.passAxisChecks() + gathering_.kept().axisChecks();
   const long testsBefore = gathering_.kept().tests() + passTestsBefore;
   const long reusesBefore = gathering_.kept().reuses();
   // Bodies that take part in a contact (or, with dampCollidingBodies, a collision) this step.
@@ -245,7 +245,8 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
     profile_->narrowPhases +=
         gathering_.kept().tests() + gathering_.passNarrowPhases() - testsBefore;
     profile_->passNarrowPhases += gathering_.passNarrowPhases() - passTestsBefore;
-    profile_->passAxisChecks += gathering_.passAxisChecks() - axisChecksBefore;
+    profile_->axisChecks +=
+        gathering_.passAxisChecks() + gathering_.kept().axisChecks() - axisChecksBefore;
     profile_->keptNarrowPhases += gathering_.kept().reuses() - reusesBefore;
     profile_->touchingPairs += stats.contacts;
     profile_->passes += stats.passes;

@@ -101,9 +101,10 @@ struct DampedStepProfile {
   long workSteps = 0;       ///< such steps
   long narrowPhases = 0;    ///< separating-axis tests run in them (KeptNarrowPhase's and the passes')
   long passNarrowPhases = 0;  ///< of those, the passes' tests of pairs with a fast body
-  /// One-axis checks in the passes that answered for a test (separatedBeyond), apart from the
-  /// tests counted above: a pair apart along the axis that parted it in its last pass.
-  long passAxisChecks = 0;
+  /// One-axis checks that answered for a test (separatedBeyond), apart from the tests counted
+  /// above: a pair apart along the axis of its last test, in the passes (OncePerStepGathering)
+  /// and in the kept narrow phases (KeptNarrowPhase::axisChecks).
+  long axisChecks = 0;
   long keptNarrowPhases = 0;  ///< narrow phases handed back by KeptNarrowPhase instead of run
   long touchingPairs = 0;   ///< pairs in contact at their ends, summed (StepStats::contacts)
   long passes = 0;          ///< collision and contact passes run in them
