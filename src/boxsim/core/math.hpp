@@ -6,6 +6,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
+#include <bit>
+#include <cstdint>
 #include <cstring>
 #include <string>
 
@@ -30,17 +32,22 @@ inline Quat axisAngleDegrees(const Vec3& axis, double angleDeg) {
 /// headers and data files: 1e-05, 0.9, 0.016666666666666666.
 std::string shortestText(double value);
 
-/// Whether two vectors hold the same doubles bit for bit (so -0 differs from 0, and a NaN
-/// equals itself): the test for reusing a value computed from them.
+/// Whether two numbers are the same double bit for bit (so -0 differs from 0, and a NaN equals
+/// itself): the test for reusing a value computed from them. Compared as 64-bit words, which
+/// the compiler keeps inline (a memcmp of a matrix was a library call in the hot loops).
+inline bool sameBits(double a, double b) {
+  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+}
+/// sameBits for vectors, component by component.
 inline bool sameBits(const Vec3& a, const Vec3& b) {
-  return std::memcmp(a.data(), b.data(), 3 * sizeof(double)) == 0;
+  return sameBits(a.x(), b.x()) && sameBits(a.y(), b.y()) && sameBits(a.z(), b.z());
 }
-/// sameBits for 3×3 matrices.
+/// sameBits for 3×3 matrices, coefficient by coefficient.
 inline bool sameBits(const Mat3& a, const Mat3& b) {
-  return std::memcmp(a.data(), b.data(), 9 * sizeof(double)) == 0;
+  for (int k = 0; k < 9; ++k)
+    if (!sameBits(a.data()[k], b.data()[k])) return false;
+  return true;
 }
-/// sameBits for numbers.
-inline bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; }
 
 /// [r]×, the matrix of the cross product: crossMatrix(r) v = r × v.
 inline Eigen::Matrix3d crossMatrix(const Eigen::Vector3d& r) {
