@@ -68,8 +68,13 @@ int fixContactConstraints(World& world, double margin, const FixContactParams& p
     while (n < limit) {
       const Obb box = Obb::of(moving);
       const Obb stable = Obb::of(other);
+      // Only the depth is read below, and the test gives the swapped pair the same depth bit
+      // for bit (separatingAxisTest): kept in the pair's own order (a, b), the test of the
+      // contacts just found, or of this loop's last nudge, is handed back, not run again.
       const SeparatingAxisResult sat =
-          kept ? kept->axis(upper, box, lower, stable) : separatingAxisTest(box, stable);
+          !kept            ? separatingAxisTest(box, stable)
+          : upper == c.a ? kept->axis(upper, box, lower, stable)
+                         : kept->axis(lower, stable, upper, box);
       if (sat.depth <= slop) break;
       // One nudge, then more while the test before each is certain to find the pair still
       // deeper than the slop (depthAfterTranslationAtLeast, 1.01 for |offset| = 1 up to
