@@ -6,7 +6,6 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
-#include <bit>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -34,9 +33,13 @@ std::string shortestText(double value);
 
 /// Whether two numbers are the same double bit for bit (so -0 differs from 0, and a NaN equals
 /// itself): the test for reusing a value computed from them. Compared as 64-bit words, which
-/// the compiler keeps inline (a memcmp of a matrix was a library call in the hot loops).
+/// the compiler keeps inline (a memcmp of a matrix was a library call in the hot loops); copied
+/// with memcpy, not std::bit_cast, which the WebAssembly build's C++ library lacks.
 inline bool sameBits(double a, double b) {
-  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+  std::uint64_t x = 0, y = 0;
+  std::memcpy(&x, &a, sizeof(double));
+  std::memcpy(&y, &b, sizeof(double));
+  return x == y;
 }
 /// sameBits for vectors, component by component.
 inline bool sameBits(const Vec3& a, const Vec3& b) {
