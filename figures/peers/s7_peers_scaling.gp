@@ -19,8 +19,8 @@ label(e) = system("echo '".e."' | tr '_' ' '")
 # One engine's rows alone, so its points join into one line.
 rows(e) = "< grep -F '\"".label(e)."\"' ".data
 do for [kind in "png svg"] {
-  if (kind eq "png") { set terminal pngcairo size 900,560 enhanced font "DejaVu Sans,11" }
-  else { set terminal svg size 900,560 enhanced font "DejaVu Sans,11" }
+  if (kind eq "png") { set terminal pngcairo size 1100,580 enhanced font "DejaVu Sans,11" }
+  else { set terminal svg size 1100,580 enhanced font "DejaVu Sans,11" }
   set output outdir.'/s7_peers_scaling.'.kind
   set title sprintf("Clump of n unit cubes, restitution 0, Δt = 1/60 s, one thread: ms per step over %s s\n{/*0.8 measured %s at %s}", seconds, stamp, commit)
   set grid
@@ -28,7 +28,8 @@ do for [kind in "png svg"] {
   set xrange [80:12500]
   set xlabel "cubes n"
   set ylabel "ms per step (this machine)"
-  set key top left
+  # Outside the plot: inside, the entries covered the lines at 100-1000 cubes.
+  set key outside right top Left reverse samplen 2
   plot D_min_y * (x / D_min_x) with lines dt 2 lc rgb "#aaaaaa" title "∝ n", \
        16.7 with lines dt 3 lc rgb "#555555" title "60 Hz", \
        for [i = 1:words(engines)] rows(word(engines, i)) using 1:3:6:7 \
