@@ -20,8 +20,6 @@ namespace boxsim {
 
 namespace {
 
-/// A swept body's bounds along the sweep axis, m: the element the sweep sorts, kept apart
-/// from the full bounds so the inner loop walks contiguous memory.
 /// An immovable body is swept like the others unless its largest half extent is more than this
 /// many times the largest half extent of any movable body: then it is a ground or a wall.
 constexpr double kSweptSizeRatio = 4.0;
@@ -36,11 +34,26 @@ constexpr double kGridSizeRatio = 4.0;
 /// its sweep over empty cells stay linear); a scattered scene goes to the sweep.
 constexpr double kGridCellsPerBody = 8.0;
 
+}  // namespace
+
+/// The types SweepAndPrune::Lists holds. A class with external linkage whose members have
+/// types of an anonymous namespace draws -Wsubobject-linkage once the file is compiled inside
+/// another (the WebAssembly build's unity files), so they live in a named namespace of their own.
+namespace sweep_and_prune_lists {
+
+/// A swept body's bounds along the sweep axis, m: the element the sweep sorts, kept apart
+/// from the full bounds so the inner loop walks contiguous memory.
 struct Interval {
   double lo = 0.0;
   double hi = 0.0;
   int body = -1;
 };
+
+}  // namespace sweep_and_prune_lists
+
+namespace {
+
+using sweep_and_prune_lists::Interval;
 
 /// The world axis (0, 1, 2) along which the centres of `bodies` spread most (largest
 /// variance), the lowest such axis on a tie. Spreading the intervals thinly keeps the number
@@ -137,6 +150,10 @@ void sweepPairs(const World& world, const std::vector<Vec3>& lo, const std::vect
   }
 }
 
+}  // namespace
+
+namespace sweep_and_prune_lists {
+
 /// A uniform grid over the gridded bodies: each body sits in the cell of the lower corner of its
 /// bounds, and the cells are at least as wide as any gridded body's bounds plus the margin, so
 /// two bodies whose bounds come within the margin sit in the same or in adjacent cells.
@@ -153,6 +170,12 @@ struct Grid {
   std::vector<Vec3> sortedLo, sortedHi;      ///< the bounds in `order`, m
   std::vector<char> sortedImmovable, movableIn;  ///< per body of `order`; per cell
 };
+
+}  // namespace sweep_and_prune_lists
+
+namespace {
+
+using sweep_and_prune_lists::Grid;
 
 /// Builds the grid over `swept`, or returns false when a grid would not pay (the cells would
 /// outnumber the bodies many times: a scattered scene, which the sweep handles well). Bodies
