@@ -44,9 +44,9 @@ namespace sweep_and_prune_lists {
 /// A swept body's bounds along the sweep axis, m: the element the sweep sorts, kept apart
 /// from the full bounds so the inner loop walks contiguous memory.
 struct Interval {
-  double lo = 0.0;
-  double hi = 0.0;
-  int body = -1;
+  double lo = 0.0;  ///< m, the lower end of the body's bounds along the sweep axis
+  double hi = 0.0;  ///< m, the upper end
+  int body = -1;    ///< the body's index in the world
 };
 
 }  // namespace sweep_and_prune_lists
@@ -165,10 +165,15 @@ struct Grid {
   std::vector<int> order;  ///< gridded bodies by cell, by body index within a cell
   std::vector<int> cell;   ///< the cell of each body of `order`
   // Working lists of buildGrid and gridPairs, kept for their room.
-  std::vector<double> extent, sortedExtent;  ///< per swept body: its largest bounds extent, m
-  std::vector<int> gridded, cellOf, next;    ///< the gridded bodies, their cells, fill cursors
-  std::vector<Vec3> sortedLo, sortedHi;      ///< the bounds in `order`, m
-  std::vector<char> sortedImmovable, movableIn;  ///< per body of `order`; per cell
+  std::vector<double> extent;         ///< per swept body: its largest bounds extent, m
+  std::vector<double> sortedExtent;   ///< a copy of the extents for their median (nth_element), m
+  std::vector<int> gridded;           ///< the gridded bodies
+  std::vector<int> cellOf;            ///< per gridded body: its cell
+  std::vector<int> next;              ///< per cell: the fill cursor into `order`
+  std::vector<Vec3> sortedLo;         ///< the lower bounds in `order`, m
+  std::vector<Vec3> sortedHi;         ///< the upper bounds in `order`, m
+  std::vector<char> sortedImmovable;  ///< per body of `order`: immovable
+  std::vector<char> movableIn;        ///< per cell: holds a movable body
 };
 
 }  // namespace sweep_and_prune_lists
