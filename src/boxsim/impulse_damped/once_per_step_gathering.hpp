@@ -160,6 +160,7 @@ class OncePerStepGathering {
   void gatherFastPairs(World& world, const Vec3& gravityStep, double dt, double margin,
                        ContactNormalTracker& normals);
   /// The fast pair of candidate k at the pass' poses: its contact, if any, into fastContacts_.
+  /// One of its bodies must stand fast at its predicted pose (PassPoses::fastAtPredicted).
   void gatherFastPair(World& world, std::size_t k, const Vec3& gravityStep, double dt,
                       double margin, ContactNormalTracker& normals);
   /// The narrow phase of candidate k where its bodies stand in the pass, trying its last
