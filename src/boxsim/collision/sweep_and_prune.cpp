@@ -36,9 +36,9 @@ constexpr double kGridCellsPerBody = 8.0;
 
 }  // namespace
 
-/// The types SweepAndPrune::Lists holds. A class with external linkage whose members have
-/// types of an anonymous namespace draws -Wsubobject-linkage once the file is compiled inside
-/// another (the WebAssembly build's unity files), so they live in a named namespace of their own.
+/// The types SweepAndPrune::Lists holds (Interval, Grid). A class with external linkage whose
+/// members have types of an anonymous namespace draws -Wsubobject-linkage once the file is
+/// compiled inside another (the unity builds), so they live in a named namespace of their own.
 namespace sweep_and_prune_lists {
 
 /// A swept body's bounds along the sweep axis, m: the element the sweep sorts, kept apart
@@ -49,10 +49,33 @@ struct Interval {
   int body = -1;    ///< the body's index in the world
 };
 
+/// A uniform grid over the gridded bodies: each body sits in the cell of the lower corner of its
+/// bounds, and the cells are at least as wide as any gridded body's bounds plus the margin, so
+/// two bodies whose bounds come within the margin sit in the same or in adjacent cells.
+struct Grid {
+  Vec3 origin = Vec3::Zero();                   ///< lower corner of cell (0, 0, 0), m
+  double h = 1.0;                               ///< cell width, m
+  Eigen::Vector3i dims = Eigen::Vector3i::Ones();  ///< cells along x, y, z
+  std::vector<int> start;  ///< bodies of cell c are order[start[c], start[c + 1])
+  std::vector<int> order;  ///< gridded bodies by cell, by body index within a cell
+  std::vector<int> cell;   ///< the cell of each body of `order`
+  // Working lists of buildGrid and gridPairs, kept for their room.
+  std::vector<double> extent;         ///< per swept body: its largest bounds extent, m
+  std::vector<double> sortedExtent;   ///< a copy of the extents for their median (nth_element), m
+  std::vector<int> gridded;           ///< the gridded bodies
+  std::vector<int> cellOf;            ///< per gridded body: its cell
+  std::vector<int> next;              ///< per cell: the fill cursor into `order`
+  std::vector<Vec3> sortedLo;         ///< the lower bounds in `order`, m
+  std::vector<Vec3> sortedHi;         ///< the upper bounds in `order`, m
+  std::vector<char> sortedImmovable;  ///< per body of `order`: immovable
+  std::vector<char> movableIn;        ///< per cell: holds a movable body
+};
+
 }  // namespace sweep_and_prune_lists
 
 namespace {
 
+using sweep_and_prune_lists::Grid;
 using sweep_and_prune_lists::Interval;
 
 /// The world axis (0, 1, 2) along which the centres of `bodies` spread most (largest
@@ -149,38 +172,6 @@ void sweepPairs(const World& world, const std::vector<Vec3>& lo, const std::vect
     }
   }
 }
-
-}  // namespace
-
-namespace sweep_and_prune_lists {
-
-/// A uniform grid over the gridded bodies: each body sits in the cell of the lower corner of its
-/// bounds, and the cells are at least as wide as any gridded body's bounds plus the margin, so
-/// two bodies whose bounds come within the margin sit in the same or in adjacent cells.
-struct Grid {
-  Vec3 origin = Vec3::Zero();                   ///< lower corner of cell (0, 0, 0), m
-  double h = 1.0;                               ///< cell width, m
-  Eigen::Vector3i dims = Eigen::Vector3i::Ones();  ///< cells along x, y, z
-  std::vector<int> start;  ///< bodies of cell c are order[start[c], start[c + 1])
-  std::vector<int> order;  ///< gridded bodies by cell, by body index within a cell
-  std::vector<int> cell;   ///< the cell of each body of `order`
-  // Working lists of buildGrid and gridPairs, kept for their room.
-  std::vector<double> extent;         ///< per swept body: its largest bounds extent, m
-  std::vector<double> sortedExtent;   ///< a copy of the extents for their median (nth_element), m
-  std::vector<int> gridded;           ///< the gridded bodies
-  std::vector<int> cellOf;            ///< per gridded body: its cell
-  std::vector<int> next;              ///< per cell: the fill cursor into `order`
-  std::vector<Vec3> sortedLo;         ///< the lower bounds in `order`, m
-  std::vector<Vec3> sortedHi;         ///< the upper bounds in `order`, m
-  std::vector<char> sortedImmovable;  ///< per body of `order`: immovable
-  std::vector<char> movableIn;        ///< per cell: holds a movable body
-};
-
-}  // namespace sweep_and_prune_lists
-
-namespace {
-
-using sweep_and_prune_lists::Grid;
 
 /// Builds the grid over `swept`, or returns false when a grid would not pay (the cells would
 /// outnumber the bodies many times: a scattered scene, which the sweep handles well). Bodies
