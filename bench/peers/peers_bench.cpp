@@ -5,7 +5,7 @@
 /// scaling figure.
 ///
 /// Usage: `build/bench/boxsim_peers [--scene clump1000] [--engine damped --engine bullet]
-/// [--restitution 0] [--sleep on|off] [--reps 3] [--table page.md] [--scaling scaling.dat]`.
+/// [--restitution 0] [--sleep on|off] [--perturb 1] [--reps 3] [--table page.md] [--scaling scaling.dat]`.
 /// Bullet and ODE take part when their Debian packages (libbullet-dev, libode-dev) were found
 /// at configure time; the page says which were absent.
 #include <CLI/CLI.hpp>
@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "boxsim/core/random.hpp"
 #include "boxsim/io/atomic_file.hpp"
 #include "boxsim/io/scene.hpp"
 #include "boxsim/io/scene_builders.hpp"
@@ -33,6 +34,25 @@ namespace {
 
 World fromFile(const std::string& stem) {
   return loadScene(std::string(BOXSIM_SCENE_DIR) + "/" + stem + ".json").world;
+}
+
+/// What --perturb adds to each component of every movable body's starting velocity: at most
+/// 1 µm/s, far below anything a scene's physics or its measures resolve, enough to change
+/// every bit of a chaotic trajectory after a few collisions.
+constexpr double kPerturbation = 1e-6;
+
+/// `world` with every movable body's velocity nudged by a seeded random vector, each component
+/// uniform in ±kPerturbation m/s (core/random.hpp's stream of `seed`); 0 leaves it as it is.
+World perturbed(World world, unsigned long seed) {
+  if (seed == 0) return world;
+  UniformRandom random(seed);
+  for (RigidBody& body : world.bodies) {
+    if (body.immovable) continue;
+    Vec3 nudge;
+    for (int k = 0; k < 3; ++k) nudge[k] = kPerturbation * (2.0 * random.next() - 1.0);
+    body.setVelocity(body.v + nudge);
+  }
+  return world;
 }
 
 World clump(int count) {
@@ -88,7 +108,8 @@ std::vector<SceneSpec> comparisonScenes() {
 /// command line imposes on every one; variants made equal by them are run once.
 std::vector<SceneSpec> chosenScenes(const std::vector<std::string>& bases,
                                     std::optional<double> restitution, std::optional<bool> sleep,
-                                    double friction, double durationScale) {
+                                    double friction, double durationScale,
+                                    unsigned long perturbSeed = 0) {
   std::vector<SceneSpec> all = comparisonScenes();
   for (const std::string& base : bases)
     if (std::none_of(all.begin(), all.end(), [&](const SceneSpec& s) { return s.base == base; })) {
@@ -105,6 +126,8 @@ std::vector<SceneSpec> chosenScenes(const std::vector<std::string>& bases,
     if (sleep) spec.sleep = *sleep;
     spec.friction = friction;
     spec.duration *= durationScale;
+    if (perturbSeed != 0)
+      spec.build = [build = spec.build, perturbSeed] { return perturbed(build(), perturbSeed); };
     if (std::none_of(chosen.begin(), chosen.end(), [&](const SceneSpec& s) { return s.label() == spec.label(); }))
       chosen.push_back(spec);
   }
@@ -325,6 +348,12 @@ int main(int argc, char** argv) {
   app.add_option("--scaling", scalingPath, "Write the scaling figure's data (the clumps at e = 0) here");
   app.add_option("--duration-scale", durationScale, "Multiply every scene's duration (0.1 for a quick look)")
       ->check(CLI::Range(1e-3, 100.0));
+  unsigned long perturbSeed = 0;
+  app.add_option("--perturb", perturbSeed,
+                 "Nudge every movable body's starting velocity by a random 1 µm/s at most (each "
+                 "component), seeded by this (default 0: no nudge), for the spread of a chaotic "
+                 "scene's measures: run seeds 1, 2, 3, ...")
+      ->check(CLI::Range(0, 1000000));
   // A memory run (the comparison starts these itself): the one scene, once, under one engine
   // ("none": the scene built, nothing stepped), untimed, for the peak resident set.
   std::string memoryEngine;
@@ -394,7 +423,7 @@ int main(int argc, char** argv) {
     // target builds it first); edits made while the comparison runs are not in its numbers.
     const std::string stampText = stamp(BOXSIM_SOURCE_DIR);
     std::vector<SceneResults> results;
-    for (const SceneSpec& spec : chosenScenes(sceneNames, restitution, sleep, friction, durationScale))
+    for (const SceneSpec& spec : chosenScenes(sceneNames, restitution, sleep, friction, durationScale, perturbSeed))
       results.push_back(runScene(spec, enginesOf(spec, engineNames), setup));
     // The native section, measured by its own target, stays as it was.
     const std::string page = withNativeSection(markdownPage(results, setup, stampText),
