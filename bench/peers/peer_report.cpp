@@ -4,11 +4,15 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 #include <thread>
+#include <vector>
 
 namespace boxsim::peers {
 
@@ -298,7 +302,121 @@ std::string memory(const std::vector<SceneResults>& scenes) {
          "once, untimed, under one engine):\n\n" + out.str() + "\n";
 }
 
+/// The cells of a Markdown table row, trimmed, without the outer bars' empty ends.
+std::vector<std::string> cellsOf(const std::string& line) {
+  std::vector<std::string> cells;
+  std::istringstream in(line);
+  for (std::string cell; std::getline(in, cell, '|');) {
+    const std::size_t first = cell.find_first_not_of(' ');
+    const std::size_t last = cell.find_last_not_of(' ');
+    cells.push_back(first == std::string::npos ? "" : cell.substr(first, last - first + 1));
+  }
+  if (!cells.empty()) cells.erase(cells.begin());  // before the first bar
+  return cells;
+}
+
+/// The measures the comparison reads of one row, as the page prints them.
+struct PrintedPhysics {
+  std::string meanPenetration, finalPenetration;  ///< mm, one decimal
+  std::string kinetic;                             ///< J, three decimals
+  std::string allAsleep;                           ///< s, two decimals, or "never"
+};
+
+/// "after is worse than before" for two printed numbers, larger being worse; a cell that is
+/// not a number is never worse.
+bool largerPrinted(const std::string& after, const std::string& before) {
+  char* endA = nullptr;
+  char* endB = nullptr;
+  const double a = std::strtod(after.c_str(), &endA), b = std::strtod(before.c_str(), &endB);
+  return endA != after.c_str() && endB != before.c_str() && a > b;
+}
+
 }  // namespace
+
+std::string baselineComparison(const std::vector<SceneResults>& scenes,
+                               const std::string& baselinePage, const std::string& baselinePath) {
+  // The baseline's table, read by its header's names: pages of other versions of this tool
+  // have other columns.
+  std::map<std::string, PrintedPhysics> before;  // "scene label|engine"
+  std::string commit = "unknown";
+  int scene = -1, engine = -1, penetration = -1, kinetic = -1, asleep = -1;
+  std::istringstream lines(baselinePage);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("- commit: ", 0) == 0 && commit == "unknown") commit = line.substr(10);
+    if (line.rfind("| ", 0) != 0) continue;
+    const std::vector<std::string> cells = cellsOf(line);
+    if (!cells.empty() && cells[0] == "scene") {
+      for (int k = 0; k < static_cast<int>(cells.size()); ++k) {
+        const std::string& name = cells[static_cast<std::size_t>(k)];
+        if (name == "scene") scene = k;
+        if (name == "engine") engine = k;
+        if (name.rfind("penetration mean / final / max", 0) == 0) penetration = k;
+        if (name.rfind("kinetic energy at end", 0) == 0) kinetic = k;
+        if (name.rfind("all asleep from", 0) == 0) asleep = k;
+      }
+      continue;
+    }
+    const int needed = std::max({scene, engine, penetration, kinetic, asleep});
+    if (std::min({scene, engine, penetration, kinetic, asleep}) < 0 ||
+        static_cast<int>(cells.size()) <= needed)
+      continue;
+    const std::string& pen = cells[static_cast<std::size_t>(penetration)];
+    const std::size_t slash = pen.find(" / ");
+    if (slash == std::string::npos) continue;
+    const std::size_t slash2 = pen.find(" / ", slash + 3);
+    before[cells[static_cast<std::size_t>(scene)] + "|" + cells[static_cast<std::size_t>(engine)]] =
+        PrintedPhysics{pen.substr(0, slash), pen.substr(slash + 3, slash2 - slash - 3),
+                       cells[static_cast<std::size_t>(kinetic)], cells[static_cast<std::size_t>(asleep)]};
+  }
+  if (before.empty())
+    throw std::invalid_argument("--baseline " + baselinePath +
+                                ": no table of boxsim_peers' form (a header row starting "
+                                "'| scene |' with penetration, kinetic energy and all asleep "
+                                "columns); give a docs/benchmarks.md this tool wrote");
+  std::ostringstream worse, same;
+  int rows = 0, worseRows = 0;
+  for (const SceneResults& s : scenes)
+    for (const char* name : kBoxsimRows) {
+      const RunResult* r = find(s, name);
+      const auto found = before.find(s.spec.label() + "|" + name);
+      if (!r || found == before.end()) continue;
+      const RunMeasures& m = r->measures;
+      const PrintedPhysics now{fixed(1000 * m.meanPenetration, 1), fixed(1000 * m.finalPenetration, 1),
+                               fixed(m.finalKinetic, 3), seconds(m.allAsleepFrom)};
+      const PrintedPhysics& was = found->second;
+      std::vector<std::string> deeper;
+      if (largerPrinted(now.meanPenetration, was.meanPenetration)) deeper.push_back("mean penetration");
+      if (largerPrinted(now.finalPenetration, was.finalPenetration)) deeper.push_back("final penetration");
+      if (largerPrinted(now.kinetic, was.kinetic)) deeper.push_back("kinetic energy");
+      if (was.allAsleep != "never" &&
+          (now.allAsleep == "never" || largerPrinted(now.allAsleep, was.allAsleep)))
+        deeper.push_back("all asleep");
+      std::ostringstream line;
+      line << "- " << s.spec.label() << ", " << name << ": penetration mean " << was.meanPenetration
+           << " → " << now.meanPenetration << " mm, final " << was.finalPenetration << " → "
+           << now.finalPenetration << " mm; kinetic energy " << was.kinetic << " → " << now.kinetic
+           << " J; all asleep from " << was.allAsleep << " → " << now.allAsleep;
+      ++rows;
+      if (deeper.empty()) {
+        same << line.str() << "\n";
+        continue;
+      }
+      ++worseRows;
+      line << ": **worse** (";
+      for (std::size_t k = 0; k < deeper.size(); ++k) line << (k ? ", " : "") << deeper[k];
+      worse << line.str() << ")\n";
+    }
+  if (rows == 0) return "";
+  std::ostringstream out;
+  out << "**Physics against the baseline** (the page measured at " << commit << ", `--baseline "
+      << baselinePath << "`; before → after, as the two pages print them): no worse on "
+      << rows - worseRows << " of " << rows << " boxsim rows. One run of a chaotic scene (the "
+      << "piles, the clumps) moves by more than some of these differences when every box's "
+      << "start is nudged by 1 µm/s (`--perturb`): read a worse row beside its spread over "
+      << "seeds.\n\n"
+      << worse.str() << same.str() << "\n";
+  return out.str();
+}
 
 std::string stamp(const std::string& sourceDir) {
   const std::time_t now = std::time(nullptr);
@@ -354,7 +472,9 @@ std::string markdownPage(const std::vector<SceneResults>& scenes, const RunSetup
       << "were run, KeptNarrowPhase); after the plus, the one-axis checks that answered for a "
       << "test, a pair apart along the axis of its last test (separatedBeyond), per pair in "
       << "contact per step; and collision and contact passes per step.\n\n"
-      << "## Summary\n\n" << summary(scenes) << aims(scenes) << stages(scenes) << realTime(scenes) << memory(scenes)
+      << "## Summary\n\n" << summary(scenes) << aims(scenes)
+      << (setup.baselinePage.empty() ? "" : baselineComparison(scenes, setup.baselinePage, setup.baselinePath))
+      << stages(scenes) << realTime(scenes) << memory(scenes)
       << "## Table\n\n"
       << "| scene | boxes | engine | mean ms/step | median | p95 | rep means | mean ÷ boxsim damped's "
       << "| penetration mean / final / max (mm) | kinetic energy at end (J) | asleep at end "

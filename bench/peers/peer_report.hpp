@@ -24,7 +24,21 @@ struct RunSetup {
   std::string command;        ///< the command line that made the page
   std::map<std::string, std::string> settings;  ///< engine name -> its settings
   std::string absent;         ///< peers not found at configure time
+  /// A page written before (--baseline), whose boxsim rows' physics the page compares with
+  /// this run's (baselineComparison); empty: no comparison.
+  std::string baselinePage;
+  std::string baselinePath;   ///< where baselinePage was read from, as given
 };
+
+/// The physics of every boxsim row (the thesis' damped integration and its variants) beside
+/// the same row of `baselinePage`, a page this tool wrote before: mean and final penetration,
+/// the kinetic energy at the end and the time from which every box stays asleep, before →
+/// after, each compared as the pages print it (a row is worse when one of them is: deeper,
+/// more energy, asleep later or never where it slept), worse rows first. Rows missing from
+/// either page are left out; "" when none is in both. Throws std::invalid_argument when
+/// `baselinePage` has no table of this tool's form.
+std::string baselineComparison(const std::vector<SceneResults>& scenes,
+                               const std::string& baselinePage, const std::string& baselinePath);
 
 /// "date, commit, machine, compiler" lines, measured now (the commit read from git in
 /// `sourceDir`; "unknown" where git does not answer).
