@@ -412,6 +412,10 @@ int main(int argc, char** argv) {
 
   try {
     setup.command = commandLine(argc, argv);
+    if (!nativePath.empty() && (perturbSeed != 0 || !setup.baselinePath.empty()))
+      throw std::invalid_argument(
+          "--native measures the scenes as they are and writes its section alone: run it "
+          "without --perturb and --baseline");
     if (!nativePath.empty()) {
       const std::string stampText = stamp(BOXSIM_SOURCE_DIR);
       const std::string section =
