@@ -1,0 +1,86 @@
+// The peers page's comparison with an earlier page (baselineComparison, peer_report.hpp): a
+// boxsim row is worse when one of its printed measures is, rows of only one page are left out,
+// and a page with no table of the tool's form is refused. The pages here are made up.
+#include <catch2/catch.hpp>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "peer_report.hpp"
+
+namespace {
+
+using boxsim::peers::baselineComparison;
+using boxsim::peers::RunResult;
+using boxsim::peers::SceneResults;
+
+/// A page as the tool writes its table (other columns of the real page left out: the
+/// comparison reads the baseline by its header's names).
+const std::string kBaseline =
+    "- commit: abc1234\n\n"
+    "| scene | boxes | engine | mean ms/step | penetration mean / final / max (mm) | kinetic "
+    "energy at end (J) | asleep at end | all asleep from (s) |\n"
+    "|---|---|---|---|---|---|---|---|\n"
+    "| pile343 e=0 | 343 | boxsim damped | **2.32** | 3.9 / 0.5 / 54.3 | 0.029 | 289 | never |\n"
+    "| pile343 e=0 | 343 | boxsim damped μ | **5.94** | 8.2 / 2.0 / 62.5 | 9.391 | 166 | 7.50 |\n"
+    "| pile343 e=0 | 343 | Bullet 3.24 | **1.25** | 43.6 / 7.3 / 171.7 | 0.219 | 12 | never |\n"
+    "| clump100 e=0 | 100 | boxsim damped | **0.65** | 0.7 / 0.5 / 7.0 | 1872.841 | 0 | never |\n";
+
+RunResult row(const std::string& engine, double meanMm, double finalMm, double kinetic,
+              double allAsleep) {
+  RunResult r;
+  r.engine = engine;
+  r.measures.meanPenetration = meanMm / 1000.0;
+  r.measures.finalPenetration = finalMm / 1000.0;
+  r.measures.finalKinetic = kinetic;
+  r.measures.allAsleepFrom = allAsleep;
+  return r;
+}
+
+SceneResults pile(std::vector<RunResult> runs) {
+  SceneResults scene;
+  scene.spec.base = "pile343";
+  scene.spec.restitution = 0.0;
+  scene.spec.sleep = true;
+  scene.runs = std::move(runs);
+  return scene;
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+}  // namespace
+
+TEST_CASE("The peers page counts a boxsim row worse than the baseline's only where a printed "
+          "measure is worse",
+          "[peers][report]") {
+  // 3.94 mm prints as 3.9, the baseline's value: not worse. The μ row ends deeper and never
+  // sleeps whole where it did from 7.50 s.
+  const std::string text = baselineComparison(
+      {pile({row("boxsim damped", 3.94, 0.5, 0.029, -1.0), row("boxsim damped μ", 4.6, 2.4, 0.5, -1.0),
+             row("Bullet 3.24", 99.0, 99.0, 99.0, -1.0)})},
+      kBaseline, "page.md");
+  CHECK(contains(text, "the page measured at abc1234"));
+  CHECK(contains(text, "no worse on 1 of 2 boxsim rows"));
+  CHECK(contains(text, "- pile343 e=0, boxsim damped μ: penetration mean 8.2 → 4.6 mm, final 2.0 → "
+                       "2.4 mm; kinetic energy 9.391 → 0.500 J; all asleep from 7.50 → never: "
+                       "**worse** (final penetration, all asleep)"));
+  CHECK(contains(text, "- pile343 e=0, boxsim damped: penetration mean 3.9 → 3.9 mm, final 0.5 → "
+                       "0.5 mm; kinetic energy 0.029 → 0.029 J; all asleep from never → never\n"));
+  // Worse rows come first; peers and rows of one page only are left out.
+  CHECK(text.find("boxsim damped μ:") < text.find("boxsim damped:"));
+  CHECK_FALSE(contains(text, "Bullet"));
+  CHECK_FALSE(contains(text, "clump100"));
+}
+
+TEST_CASE("The peers page compares nothing when no boxsim row is on both pages, and refuses a "
+          "baseline with no table",
+          "[peers][report]") {
+  SceneResults clump = pile({row("boxsim damped", 1.0, 1.0, 1.0, -1.0)});
+  clump.spec.base = "clump1000";
+  CHECK(baselineComparison({clump}, kBaseline, "page.md").empty());
+  CHECK_THROWS_AS(baselineComparison({}, "# a page\n\nno table here\n", "page.md"),
+                  std::invalid_argument);
+}
