@@ -40,6 +40,12 @@ std::string ms(double value) {
 
 std::string seconds(double value) { return value < 0 ? "never" : fixed(value, 2); }
 
+/// A row's measures as the page prints them (tableRow, baselineComparison).
+PrintedPhysics printed(const RunMeasures& m) {
+  return PrintedPhysics{fixed(1000 * m.meanPenetration, 1), fixed(1000 * m.finalPenetration, 1),
+                        fixed(m.finalKinetic, 3), seconds(m.allAsleepFrom)};
+}
+
 /// The first line a shell command prints, without its newline; empty when it fails.
 std::string firstLineOf(const std::string& command) {
   std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
@@ -107,6 +113,7 @@ double bestPeerFinalPenetration(const SceneResults& scene) {
 
 std::string tableRow(const SceneResults& scene, const RunResult& r) {
   const RunMeasures& m = r.measures;
+  const PrintedPhysics shown = printed(m);
   const RunResult* boxsim = find(scene, kBoxsim);
   const auto [lo, hi] = std::minmax_element(r.repMeanMs.begin(), r.repMeanMs.end());
   std::ostringstream out;
@@ -114,9 +121,9 @@ std::string tableRow(const SceneResults& scene, const RunResult& r) {
       << ms(r.meanMs()) << "** | " << ms(r.medianMs()) << " | " << ms(r.p95Ms()) << " | "
       << ms(*lo) << "–" << ms(*hi) << " | "
       << (boxsim && boxsim != &r ? fixed(r.meanMs() / boxsim->meanMs(), 2) : "") << " | "
-      << fixed(1000 * m.meanPenetration, 1) << " / " << fixed(1000 * m.finalPenetration, 1) << " / "
-      << fixed(1000 * m.maxPenetration, 1) << " | " << fixed(m.finalKinetic, 3) << " | "
-      << m.asleepAtEnd << " | " << seconds(m.allAsleepFrom) << " | " << seconds(m.allAtRestFrom)
+      << shown.meanPenetration << " / " << shown.finalPenetration << " / "
+      << fixed(1000 * m.maxPenetration, 1) << " | " << shown.kinetic << " | "
+      << m.asleepAtEnd << " | " << shown.allAsleep << " | " << seconds(m.allAtRestFrom)
       << " | " << (m.drift < 0 ? "–" : fixed(1000 * m.drift, 1)) << " | "
       << (r.work ? fixed(r.work->narrowPhasesPerTouchingPair, 2) + " (" +
                        fixed(r.work->passNarrowPhasesPerTouchingPair, 2) + "; " +
@@ -315,13 +322,6 @@ std::vector<std::string> cellsOf(const std::string& line) {
   return cells;
 }
 
-/// The measures the comparison reads of one row, as the page prints them.
-struct PrintedPhysics {
-  std::string meanPenetration, finalPenetration;  ///< mm, one decimal
-  std::string kinetic;                             ///< J, three decimals
-  std::string allAsleep;                           ///< s, two decimals, or "never"
-};
-
 /// "after is worse than before" for two printed numbers, larger being worse; a cell that is
 /// not a number is never worse.
 bool largerPrinted(const std::string& after, const std::string& before) {
@@ -333,16 +333,12 @@ bool largerPrinted(const std::string& after, const std::string& before) {
 
 }  // namespace
 
-std::string baselineComparison(const std::vector<SceneResults>& scenes,
-                               const std::string& baselinePage, const std::string& baselinePath) {
-  // The baseline's table, read by its header's names: pages of other versions of this tool
-  // have other columns.
-  std::map<std::string, PrintedPhysics> before;  // "scene label|engine"
-  std::string commit = "unknown";
+BaselinePage parseBaseline(const std::string& text, const std::string& path) {
+  BaselinePage page{path, "unknown", {}};
   int scene = -1, engine = -1, penetration = -1, kinetic = -1, asleep = -1;
-  std::istringstream lines(baselinePage);
+  std::istringstream lines(text);
   for (std::string line; std::getline(lines, line);) {
-    if (line.rfind("- commit: ", 0) == 0 && commit == "unknown") commit = line.substr(10);
+    if (line.rfind("- commit: ", 0) == 0 && page.commit == "unknown") page.commit = line.substr(10);
     if (line.rfind("| ", 0) != 0) continue;
     const std::vector<std::string> cells = cellsOf(line);
     if (!cells.empty() && cells[0] == "scene") {
@@ -356,60 +352,63 @@ std::string baselineComparison(const std::vector<SceneResults>& scenes,
       }
       continue;
     }
-    const int needed = std::max({scene, engine, penetration, kinetic, asleep});
     if (std::min({scene, engine, penetration, kinetic, asleep}) < 0 ||
-        static_cast<int>(cells.size()) <= needed)
+        static_cast<int>(cells.size()) <= std::max({scene, engine, penetration, kinetic, asleep}))
       continue;
-    const std::string& pen = cells[static_cast<std::size_t>(penetration)];
+    const auto cell = [&](int k) -> const std::string& { return cells[static_cast<std::size_t>(k)]; };
+    // "mean / final / max"
+    const std::string& pen = cell(penetration);
     const std::size_t slash = pen.find(" / ");
     if (slash == std::string::npos) continue;
     const std::size_t slash2 = pen.find(" / ", slash + 3);
-    before[cells[static_cast<std::size_t>(scene)] + "|" + cells[static_cast<std::size_t>(engine)]] =
+    page.rows[cell(scene) + "|" + cell(engine)] =
         PrintedPhysics{pen.substr(0, slash), pen.substr(slash + 3, slash2 - slash - 3),
-                       cells[static_cast<std::size_t>(kinetic)], cells[static_cast<std::size_t>(asleep)]};
+                       cell(kinetic), cell(asleep)};
   }
-  if (before.empty())
-    throw std::invalid_argument("--baseline " + baselinePath +
+  if (page.rows.empty())
+    throw std::invalid_argument("--baseline " + path +
                                 ": no table of boxsim_peers' form (a header row starting "
                                 "'| scene |' with penetration, kinetic energy and all asleep "
                                 "columns); give a docs/benchmarks.md this tool wrote");
+  return page;
+}
+
+std::string baselineComparison(const std::vector<SceneResults>& scenes, const BaselinePage& baseline) {
   std::ostringstream worse, same;
   int rows = 0, worseRows = 0;
   for (const SceneResults& s : scenes)
     for (const char* name : kBoxsimRows) {
       const RunResult* r = find(s, name);
-      const auto found = before.find(s.spec.label() + "|" + name);
-      if (!r || found == before.end()) continue;
-      const RunMeasures& m = r->measures;
-      const PrintedPhysics now{fixed(1000 * m.meanPenetration, 1), fixed(1000 * m.finalPenetration, 1),
-                               fixed(m.finalKinetic, 3), seconds(m.allAsleepFrom)};
+      const auto found = baseline.rows.find(s.spec.label() + "|" + name);
+      if (!r || found == baseline.rows.end()) continue;
+      const PrintedPhysics now = printed(r->measures);
       const PrintedPhysics& was = found->second;
-      std::vector<std::string> deeper;
-      if (largerPrinted(now.meanPenetration, was.meanPenetration)) deeper.push_back("mean penetration");
-      if (largerPrinted(now.finalPenetration, was.finalPenetration)) deeper.push_back("final penetration");
-      if (largerPrinted(now.kinetic, was.kinetic)) deeper.push_back("kinetic energy");
+      std::vector<std::string> worseIn;
+      if (largerPrinted(now.meanPenetration, was.meanPenetration)) worseIn.push_back("mean penetration");
+      if (largerPrinted(now.finalPenetration, was.finalPenetration)) worseIn.push_back("final penetration");
+      if (largerPrinted(now.kinetic, was.kinetic)) worseIn.push_back("kinetic energy");
       if (was.allAsleep != "never" &&
           (now.allAsleep == "never" || largerPrinted(now.allAsleep, was.allAsleep)))
-        deeper.push_back("all asleep");
+        worseIn.push_back("all asleep");
       std::ostringstream line;
       line << "- " << s.spec.label() << ", " << name << ": penetration mean " << was.meanPenetration
            << " → " << now.meanPenetration << " mm, final " << was.finalPenetration << " → "
            << now.finalPenetration << " mm; kinetic energy " << was.kinetic << " → " << now.kinetic
            << " J; all asleep from " << was.allAsleep << " → " << now.allAsleep;
       ++rows;
-      if (deeper.empty()) {
+      if (worseIn.empty()) {
         same << line.str() << "\n";
         continue;
       }
       ++worseRows;
       line << ": **worse** (";
-      for (std::size_t k = 0; k < deeper.size(); ++k) line << (k ? ", " : "") << deeper[k];
+      for (std::size_t k = 0; k < worseIn.size(); ++k) line << (k ? ", " : "") << worseIn[k];
       worse << line.str() << ")\n";
     }
   if (rows == 0) return "";
   std::ostringstream out;
-  out << "**Physics against the baseline** (the page measured at " << commit << ", `--baseline "
-      << baselinePath << "`; before → after, as the two pages print them): no worse on "
+  out << "**Physics against the baseline** (the page measured at " << baseline.commit
+      << ", `--baseline " << baseline.path << "`; before → after, as the two pages print them): no worse on "
       << rows - worseRows << " of " << rows << " boxsim rows. One run of a chaotic scene (the "
       << "piles, the clumps) moves by more than some of these differences when every box's "
       << "start is nudged by 1 µm/s (`--perturb`): read a worse row beside its spread over "
@@ -473,7 +472,7 @@ std::string markdownPage(const std::vector<SceneResults>& scenes, const RunSetup
       << "test, a pair apart along the axis of its last test (separatedBeyond), per pair in "
       << "contact per step; and collision and contact passes per step.\n\n"
       << "## Summary\n\n" << summary(scenes) << aims(scenes)
-      << (setup.baselinePage.empty() ? "" : baselineComparison(scenes, setup.baselinePage, setup.baselinePath))
+      << (setup.baseline ? baselineComparison(scenes, *setup.baseline) : "")
       << stages(scenes) << realTime(scenes) << memory(scenes)
       << "## Table\n\n"
       << "| scene | boxes | engine | mean ms/step | median | p95 | rep means | mean ÷ boxsim damped's "

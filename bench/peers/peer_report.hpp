@@ -4,6 +4,7 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,28 @@ struct SceneResults {
   std::vector<RunResult> runs;
 };
 
+/// The measures of a row the comparison with an earlier page reads, as the page prints them.
+struct PrintedPhysics {
+  std::string meanPenetration;   ///< mm, one decimal
+  std::string finalPenetration;  ///< mm, one decimal
+  std::string kinetic;           ///< J, three decimals
+  std::string allAsleep;         ///< s, two decimals, or "never"
+};
+
+/// A page this tool wrote before (docs/benchmarks.md of an earlier commit), as
+/// baselineComparison reads it.
+struct BaselinePage {
+  std::string path;    ///< where it was read from, as given
+  std::string commit;  ///< the commit its stamp names; "unknown" when none
+  /// Its rows by "scene label|engine", every engine's.
+  std::map<std::string, PrintedPhysics> rows;
+};
+
+/// Reads the table of a page this tool wrote (`text`, read from `path`) by its header's column
+/// names, so pages of earlier versions with other columns read too. Throws
+/// std::invalid_argument, naming `path`, when it has no such table.
+BaselinePage parseBaseline(const std::string& text, const std::string& path);
+
 /// How the comparison was run, for the page's header.
 struct RunSetup {
   int reps = 3;
@@ -25,20 +48,17 @@ struct RunSetup {
   std::map<std::string, std::string> settings;  ///< engine name -> its settings
   std::string absent;         ///< peers not found at configure time
   /// A page written before (--baseline), whose boxsim rows' physics the page compares with
-  /// this run's (baselineComparison); empty: no comparison.
-  std::string baselinePage;
-  std::string baselinePath;   ///< where baselinePage was read from, as given
+  /// this run's (baselineComparison); none: no comparison.
+  std::optional<BaselinePage> baseline;
 };
 
 /// The physics of every boxsim row (the thesis' damped integration and its variants) beside
-/// the same row of `baselinePage`, a page this tool wrote before: mean and final penetration,
-/// the kinetic energy at the end and the time from which every box stays asleep, before →
-/// after, each compared as the pages print it (a row is worse when one of them is: deeper,
-/// more energy, asleep later or never where it slept), worse rows first. Rows missing from
-/// either page are left out; "" when none is in both. Throws std::invalid_argument when
-/// `baselinePage` has no table of this tool's form.
-std::string baselineComparison(const std::vector<SceneResults>& scenes,
-                               const std::string& baselinePage, const std::string& baselinePath);
+/// the same row of `baseline`: mean and final penetration, the kinetic energy at the end and
+/// the time from which every box stays asleep, before → after, each compared as the pages
+/// print it (a row is worse when one of them is: deeper, more energy, asleep later or never
+/// where it slept), worse rows first. Rows missing from either page are left out; "" when
+/// none is in both.
+std::string baselineComparison(const std::vector<SceneResults>& scenes, const BaselinePage& baseline);
 
 /// "date, commit, machine, compiler" lines, measured now (the commit read from git in
 /// `sourceDir`; "unknown" where git does not answer).

@@ -1,4 +1,5 @@
-// The peers page's comparison with an earlier page (baselineComparison, peer_report.hpp): a
+// The peers page's comparison with an earlier page (parseBaseline, baselineComparison,
+// peer_report.hpp): a
 // boxsim row is worse when one of its printed measures is, rows of only one page are left out,
 // and a page with no table of the tool's form is refused. The pages here are made up.
 #include <catch2/catch.hpp>
@@ -12,12 +13,13 @@
 namespace {
 
 using boxsim::peers::baselineComparison;
+using boxsim::peers::parseBaseline;
 using boxsim::peers::RunResult;
 using boxsim::peers::SceneResults;
 
 /// A page as the tool writes its table (other columns of the real page left out: the
 /// comparison reads the baseline by its header's names).
-const std::string kBaseline =
+const std::string kBaselineText =
     "- commit: abc1234\n\n"
     "| scene | boxes | engine | mean ms/step | penetration mean / final / max (mm) | kinetic "
     "energy at end (J) | asleep at end | all asleep from (s) |\n"
@@ -61,7 +63,7 @@ TEST_CASE("The peers page counts a boxsim row worse than the baseline's only whe
   const std::string text = baselineComparison(
       {pile({row("boxsim damped", 3.94, 0.5, 0.029, -1.0), row("boxsim damped μ", 4.6, 2.4, 0.5, -1.0),
              row("Bullet 3.24", 99.0, 99.0, 99.0, -1.0)})},
-      kBaseline, "page.md");
+      parseBaseline(kBaselineText, "page.md"));
   CHECK(contains(text, "the page measured at abc1234"));
   CHECK(contains(text, "no worse on 1 of 2 boxsim rows"));
   CHECK(contains(text, "- pile343 e=0, boxsim damped μ: penetration mean 8.2 → 4.6 mm, final 2.0 → "
@@ -80,7 +82,6 @@ TEST_CASE("The peers page compares nothing when no boxsim row is on both pages, 
           "[peers][report]") {
   SceneResults clump = pile({row("boxsim damped", 1.0, 1.0, 1.0, -1.0)});
   clump.spec.base = "clump1000";
-  CHECK(baselineComparison({clump}, kBaseline, "page.md").empty());
-  CHECK_THROWS_AS(baselineComparison({}, "# a page\n\nno table here\n", "page.md"),
-                  std::invalid_argument);
+  CHECK(baselineComparison({clump}, parseBaseline(kBaselineText, "page.md")).empty());
+  CHECK_THROWS_AS(parseBaseline("# a page\n\nno table here\n", "page.md"), std::invalid_argument);
 }

@@ -348,7 +348,8 @@ int main(int argc, char** argv) {
   app.add_option("--scaling", scalingPath, "Write the scaling figure's data (the clumps at e = 0) here");
   app.add_option("--duration-scale", durationScale, "Multiply every scene's duration (0.1 for a quick look)")
       ->check(CLI::Range(1e-3, 100.0));
-  app.add_option("--baseline", setup.baselinePath,
+  std::string baselinePath;
+  app.add_option("--baseline", baselinePath,
                  "A page this tool wrote before (docs/benchmarks.md of an earlier commit): the "
                  "new page compares every boxsim row's physics with it, before and after")
       ->check(CLI::ExistingFile);
@@ -412,7 +413,7 @@ int main(int argc, char** argv) {
 
   try {
     setup.command = commandLine(argc, argv);
-    if (!nativePath.empty() && (perturbSeed != 0 || !setup.baselinePath.empty()))
+    if (!nativePath.empty() && (perturbSeed != 0 || !baselinePath.empty()))
       throw std::invalid_argument(
           "--native measures the scenes as they are and writes its section alone: run it "
           "without --perturb and --baseline");
@@ -427,11 +428,8 @@ int main(int argc, char** argv) {
       return 0;
     }
     setup.absent = absentPeers();
-    if (!setup.baselinePath.empty()) {
-      setup.baselinePage = fileText(setup.baselinePath);
-      // A page with no table fails now, not after the comparison has run.
-      baselineComparison({}, setup.baselinePage, setup.baselinePath);
-    }
+    // Read before the comparison runs: a page with no table fails now, not after it.
+    if (!baselinePath.empty()) setup.baseline = parseBaseline(fileText(baselinePath), baselinePath);
     // Stamped as the timing begins: the tree the binary was just built from (the bench_peers
     // target builds it first); edits made while the comparison runs are not in its numbers.
     const std::string stampText = stamp(BOXSIM_SOURCE_DIR);
