@@ -55,6 +55,10 @@ struct SupportVerdict {
   /// act on a frictional body, and its vertical rest (L7-L9) as on a box lying flat. Never set
   /// in a frictionless world.
   bool held = false;
+  /// A movable body it rests on slips under it (markFrictionSlides' dragSpeed): its friction
+  /// drags it along, so DAMPENOBJECTS' rests leave its horizontal velocity alone (L11-L15 for x
+  /// and z) and its snap (L23-L28) leaves its pose. Never set in a frictionless world.
+  bool dragged = false;
 };
 
 /// For each body of `world` (one verdict per body, in body order), whether its centre of mass

@@ -213,7 +213,8 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
     // Coulomb's cone bounds the rests (markFrictionSlides); a frictionless world is A.2's.
     if (friction) {
       slideVerdicts_.assign(support->begin(), support->end());
-      markFrictionSlides(world, lastContacts_, slideVerdicts_, &slideLists_, supportParams);
+      markFrictionSlides(world, lastContacts_, slideVerdicts_, &slideLists_, supportParams,
+                         params_.damping.linearSmallEps * world.gravity.norm() * dt);
       support = &slideVerdicts_;
     }
     dampenObjects(world, dt, touched, params_.damping, params_.impulse.integrator, *support,

@@ -122,9 +122,14 @@ void dampMomenta(World& world, double dt, const std::vector<char>& touched,
     // DAMPENOBJECTS L11-L19: component by component.
     // DEVIATION(DAMPENOBJECTS L14): the pseudocode tests ε5 twice, which would zero every component
     // the first test shrank; the second test uses its own, smaller ε6 (k5 then has an effect).
+    // DEVIATION(DAMPENOBJECTS L11-L15): not the horizontal velocity of a body its support drags
+    // (SupportVerdict::dragged; markFrictionSlides).
+    const bool dragged = !support.empty() && support[i].dragged;
     for (int c = 0; c < 3 && overSupport; ++c) {
-      if (std::abs(o.s.P[c]) < params.linearSmallEps * pUnit) o.s.P[c] *= params.linearSmallFactor;
-      if (std::abs(o.s.P[c]) < params.linearZeroEps * pUnit) o.s.P[c] = 0.0;
+      if (!(dragged && c != 1)) {
+        if (std::abs(o.s.P[c]) < params.linearSmallEps * pUnit) o.s.P[c] *= params.linearSmallFactor;
+        if (std::abs(o.s.P[c]) < params.linearZeroEps * pUnit) o.s.P[c] = 0.0;
+      }
       if (std::abs(o.s.L[c]) < params.angularSmallEps * lUnit) o.s.L[c] *= params.angularSmallFactor;
       if (std::abs(o.s.L[c]) < params.angularZeroEps * lUnit) o.s.L[c] = 0.0;
     }
@@ -166,6 +171,20 @@ Vec2 nearestInHull(Vec2* points, std::size_t count, Vec2* hull, const Vec2& c) {
     }
   }
   return nearest;
+}
+
+/// Whether, at some point of manifold m between `body` and the movable body `under` it rests
+/// on, `under`'s surface slides along it faster than `speed` (m/s): the part of their relative
+/// velocity there that lies in the contact plane.
+bool slipsFaster(const RigidBody& body, const RigidBody& under, const ContactManifold& m,
+                 double speed) {
+  for (int k = 0; k < m.count; ++k) {
+    const Vec3& p = m.points[k].position;
+    const Vec3 slip = (under.v + under.omega.cross(Vec3(p - under.s.x))) -
+                      (body.v + body.omega.cross(Vec3(p - body.s.x)));
+    if ((slip - slip.dot(m.normal) * m.normal).squaredNorm() > speed * speed) return true;
+  }
+  return false;
 }
 
 /// SupportVerdict::held (markFrictionSlides) from the sums markFrictionSlides made; `down` is ĝ.
@@ -252,10 +271,11 @@ void markFrictionHeld(const World& world, const Vec3& down, std::vector<SupportV
 
 void markFrictionSlides(const World& world, const std::vector<ContactManifold>& contacts,
                         std::vector<SupportVerdict>& support, FrictionSlideLists* lists,
-                        const SupportTestParams& params) {
+                        const SupportTestParams& params, double dragSpeed) {
   const std::size_t n = world.bodies.size();
-  support.resize(n, SupportVerdict{true, true, false, false});
-  for (SupportVerdict& verdict : support) verdict.slides = verdict.held = false;  // its own fields
+  support.resize(n, SupportVerdict{true, true, false, false, false});
+  for (SupportVerdict& verdict : support)  // its own fields
+    verdict.slides = verdict.held = verdict.dragged = false;
   const double g = world.gravity.norm();
   if (!(g > 0.0)) return;
   const Vec3 down = world.gravity / g;
@@ -302,8 +322,13 @@ void markFrictionSlides(const World& world, const std::vector<ContactManifold>& 
           patches.emplace_back(m.points[k].position.x(), m.points[k].position.z());
       const std::size_t count = patches.size() - first;
       for (std::size_t k = first; k < patches.size(); ++k) points.emplace_back(i, patches[k]);
-      if (!world.bodies[i].immovable && !world.bodies[under].immovable)
+      if (!world.bodies[i].immovable && !world.bodies[under].immovable) {
         carried.push_back({i, under, bears, first, count});
+        // Its support slips under it faster than the rests reach: friction is dragging it.
+        if (!world.bodies[i].friction.frictionless() &&
+            slipsFaster(world.bodies[i], world.bodies[under], m, dragSpeed))
+          support[i].dragged = true;
+      }
     }
   }
   for (std::size_t i = 0; i < n; ++i) {
@@ -369,6 +394,8 @@ DampingStats dampenObjects(World& world, double dt, const std::vector<char>& tou
     // rests on it.
     if (!support.empty() && (support[i].slides || (!o.friction.frictionless() && !support[i].held)))
       continue;
+    // DEVIATION(DAMPENOBJECTS L23): nor one its support drags (SupportVerdict::dragged).
+    if (!support.empty() && support[i].dragged) continue;
     const double ell = o.halfExtents.minCoeff();
     const double deltaPosition = (o.s.x - old[i].x).norm();
     const double deltaRotation = quaternionDistance(o.s.q, old[i].q);

@@ -5,6 +5,7 @@
 /// would barely move stays where it was.
 #pragma once
 
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -84,13 +85,24 @@ struct FrictionSlideLists {
 /// on one support: a stack passes the centre of its whole load down). DAMPENOBJECTS rests
 /// (L6-L21) and snaps (L23-L28) a frictional body only when it is held, and takes a small
 /// vertical velocity from a held body as from one lying flat (L7-L9).
+/// Sets SupportVerdict::dragged for every movable body with Coulomb friction that a movable body
+/// it rests on slips under: at a point of their contact the support's surface moves along the
+/// contact plane faster than `dragSpeed` (m/s) relative to it. Its friction drags it along; the
+/// rests of its horizontal velocity and the snap would hold it where it is.
+/// DEVIATION(DAMPENOBJECTS L11-L15, L23-L28): the rests and the snap act on a body's velocity and
+/// pose in the world, not relative to what carries it, so a box lying on one that slides away
+/// under it (launched, or struck) was held still each step while Coulomb drags it at μ g: a cube
+/// carried by one launched at 3 m/s along rough ground (μ 0.5) never moved, where Coulomb moves
+/// it 0.115 m. Damped integration passes the speed below which the rests start to shrink a
+/// velocity, ε5 g Δt (DampingParams::linearSmallEps); the default, infinity, marks none.
 /// `lists`, when given, holds the per-body sums between calls.
 /// `params` name, as for SupportTest, when two boxes lie face to face: the support points of
 /// such a pair are the patch where their faces meet (levelContactPatch), whatever points the
 /// narrow phase gave it, else the manifold's points.
 void markFrictionSlides(const World& world, const std::vector<ContactManifold>& contacts,
                         std::vector<SupportVerdict>& support, FrictionSlideLists* lists = nullptr,
-                        const SupportTestParams& params = {});
+                        const SupportTestParams& params = {},
+                        double dragSpeed = std::numeric_limits<double>::infinity());
 
 /// Scales the momenta of the bodies marked `touched` (one flag per body) as
 /// \alg{DAMPENOBJECTS L1-L21}, with the thresholds of `params` turned into momenta for each body:
@@ -100,7 +112,8 @@ void markFrictionSlides(const World& world, const std::vector<ContactManifold>& 
 /// `support` (one verdict per body, centreOverSupport, or empty: A.2 as written) says which
 /// bodies stand over their support: with DampingParams::supportTest, L6-L21 act only on those,
 /// and L10 only on those that lie on top faces of one level (SupportVerdict::level). Whatever
-/// DampingParams::supportTest says, L6-L21 leave alone a body marked SupportVerdict::slides.
+/// DampingParams::supportTest says, L6-L21 leave alone a body marked SupportVerdict::slides,
+/// and L11-L15 the horizontal velocity of one marked SupportVerdict::dragged.
 void dampMomenta(World& world, double dt, const std::vector<char>& touched,
                  const DampingParams& params, DampingStats* stats = nullptr,
                  const std::vector<SupportVerdict>& support = {});
@@ -110,7 +123,7 @@ void dampMomenta(World& world, double dt, const std::vector<char>& touched,
 /// with `integrator`), then the snap of
 /// \alg{DAMPENOBJECTS L23-L28} for bodies in contact that lie with a face perpendicular to gravity.
 /// `support` as for dampMomenta; with DampingParams::supportTest the snap too holds only bodies
-/// over their support. `before`, when given, is the list the poses before L22 are kept in (a
+/// over their support, and never one marked SupportVerdict::slides or SupportVerdict::dragged. `before`, when given, is the list the poses before L22 are kept in (a
 /// caller that asks every step keeps its room).
 DampingStats dampenObjects(World& world, double dt, const std::vector<char>& touched,
                            const DampingParams& params,
