@@ -324,8 +324,8 @@ void markFrictionSlides(const World& world, const std::vector<ContactManifold>& 
       for (std::size_t k = first; k < patches.size(); ++k) points.emplace_back(i, patches[k]);
       if (!world.bodies[i].immovable && !world.bodies[under].immovable) {
         carried.push_back({i, under, bears, first, count});
-        // Its support slips under it faster than the rests reach: friction is dragging it.
-        if (!world.bodies[i].friction.frictionless() &&
+        // Its support slips under it faster than the rests reach: their friction drags it.
+        if (!world.bodies[i].friction.frictionless() && muStatic > 0.0 &&
             slipsFaster(world.bodies[i], world.bodies[under], m, dragSpeed))
           support[i].dragged = true;
       }

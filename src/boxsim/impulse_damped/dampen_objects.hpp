@@ -86,8 +86,8 @@ struct FrictionSlideLists {
 /// (L6-L21) and snaps (L23-L28) a frictional body only when it is held, and takes a small
 /// vertical velocity from a held body as from one lying flat (L7-L9).
 /// Sets SupportVerdict::dragged for every movable body with Coulomb friction that a movable body
-/// it rests on slips under: at a point of their contact the support's surface moves along the
-/// contact plane faster than `dragSpeed` (m/s) relative to it. Its friction drags it along; the
+/// it rests on, with friction between the two, slips under: at a point of their contact the
+/// support's surface moves along the contact plane faster than `dragSpeed` (m/s) relative to it. Its friction drags it along; the
 /// rests of its horizontal velocity and the snap would hold it where it is.
 /// DEVIATION(DAMPENOBJECTS L11-L15, L23-L28): the rests and the snap act on a body's velocity and
 /// pose in the world, not relative to what carries it, so a box lying on one that slides away
