@@ -727,7 +727,9 @@ TEST_CASE("boxsim run, damped integration as it runs by default, on Coulomb's sc
       INFO(method);
       const Trajectory t = runCoulombScene("carried.json", method);
       CHECK(travelled(t, 1) == Approx(carrier - 0.5 * v0 * dt).epsilon(0.03));
-      CHECK(travelled(t, 2) == Approx(load).epsilon(0.05));
+      // The plain impulse step's shock propagation settles the carrier against the ground before
+      // the load has passed its push on (as with the stacks on the 30° plank): 4 % short.
+      CHECK(travelled(t, 2) == Approx(load).epsilon(std::string(method) == "damped" ? 0.01 : 0.05));
       CHECK(t.frames.back().kinetic < 1e-3);
       // Friction takes kinetic energy and never gives it; under the plain impulse step, which has
       // no rests, the load's height bobs and its energy with it (measured: up to 3e-5 J a frame).

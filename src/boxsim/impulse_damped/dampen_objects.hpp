@@ -87,8 +87,9 @@ struct FrictionSlideLists {
 /// vertical velocity from a held body as from one lying flat (L7-L9).
 /// Sets SupportVerdict::dragged for every movable body with Coulomb friction that a movable body
 /// it rests on, with friction between the two, slips under: at a point of their contact the
-/// support's surface moves along the contact plane faster than `dragSpeed` (m/s) relative to it. Its friction drags it along; the
-/// rests of its horizontal velocity and the snap would hold it where it is.
+/// support's surface moves along the contact plane faster than `dragSpeed` (m/s) relative to
+/// it. Its friction drags it along; the rests of its horizontal velocity and the snap would
+/// hold it where it is.
 /// DEVIATION(DAMPENOBJECTS L11-L15, L23-L28): the rests and the snap act on a body's velocity and
 /// pose in the world, not relative to what carries it, so a box lying on one that slides away
 /// under it (launched, or struck) was held still each step while Coulomb drags it at μ g: a cube
@@ -123,8 +124,9 @@ void dampMomenta(World& world, double dt, const std::vector<char>& touched,
 /// with `integrator`), then the snap of
 /// \alg{DAMPENOBJECTS L23-L28} for bodies in contact that lie with a face perpendicular to gravity.
 /// `support` as for dampMomenta; with DampingParams::supportTest the snap too holds only bodies
-/// over their support, and never one marked SupportVerdict::slides or SupportVerdict::dragged. `before`, when given, is the list the poses before L22 are kept in (a
-/// caller that asks every step keeps its room).
+/// over their support, and never one marked SupportVerdict::slides or SupportVerdict::dragged.
+/// `before`, when given, is the list the poses before L22 are kept in (a caller that asks every
+/// step keeps its room).
 DampingStats dampenObjects(World& world, double dt, const std::vector<char>& touched,
                            const DampingParams& params,
                            Integrator integrator = Integrator::SemiImplicitEuler,
