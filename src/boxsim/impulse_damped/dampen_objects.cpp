@@ -391,11 +391,10 @@ DampingStats dampenObjects(World& world, double dt, const std::vector<char>& tou
     // DEVIATION(DAMPENOBJECTS L23): with the support test, only over its support (as L6-L21).
     if (params.supportTest && !support.empty() && !support[i].over) continue;
     // DEVIATION(DAMPENOBJECTS L23): nor one its Coulomb friction cannot hold, alone or with what
-    // rests on it.
-    if (!support.empty() && (support[i].slides || (!o.friction.frictionless() && !support[i].held)))
+    // rests on it, nor one its support drags (SupportVerdict::dragged).
+    if (!support.empty() && (support[i].slides || support[i].dragged ||
+                             (!o.friction.frictionless() && !support[i].held)))
       continue;
-    // DEVIATION(DAMPENOBJECTS L23): nor one its support drags (SupportVerdict::dragged).
-    if (!support.empty() && support[i].dragged) continue;
     const double ell = o.halfExtents.minCoeff();
     const double deltaPosition = (o.s.x - old[i].x).norm();
     const double deltaRotation = quaternionDistance(o.s.q, old[i].q);
