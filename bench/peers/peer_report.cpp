@@ -423,10 +423,10 @@ std::string stamp(const std::string& sourceDir) {
   std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
   std::string commit = firstLineOf("git -C '" + sourceDir + "' rev-parse --short HEAD 2>/dev/null");
   if (commit.empty()) commit = "unknown";
-  // The comparison's own outputs (the last run's page, data and figure) do not count.
+  // The comparison's own outputs (the last run's pages, data and figure) do not count.
   else if (!firstLineOf("git -C '" + sourceDir + "' status --porcelain --untracked-files=no -- . "
-                        "':!docs/benchmarks.md' ':!docs/data' ':!docs/images/s7_peers_scaling.png' "
-                        "2>/dev/null").empty())
+                        "':!docs/benchmarks.md' ':!docs/shot_impact.md' ':!docs/data' "
+                        "':!docs/images/s7_peers_scaling.png' 2>/dev/null").empty())
     commit += " with uncommitted changes";
   std::ostringstream out;
   out << "- date: " << date << "\n- commit: " << commit << "\n- machine: "

@@ -82,9 +82,7 @@ double RunResult::meanMs() const {
 double RunResult::medianMs() const { return percentile(stepMs, 0.5); }
 double RunResult::p95Ms() const { return percentile(stepMs, 0.95); }
 
-namespace {
-/// The scene `spec` describes, as every engine loads it.
-PeerScene sceneOf(const SceneSpec& spec) {
+PeerScene peerSceneOf(const SceneSpec& spec) {
   World world = spec.build();
   world.restitution = spec.restitution;
   PeerScene scene = peerSceneFromWorld(spec.label(), world, spec.duration);
@@ -92,10 +90,9 @@ PeerScene sceneOf(const SceneSpec& spec) {
   scene.friction = spec.friction;
   return scene;
 }
-}  // namespace
 
 void runRepetition(const SceneSpec& spec, PeerEngine& engine, double dt, RunResult& result) {
-  PeerScene scene = sceneOf(spec);
+  PeerScene scene = peerSceneOf(spec);
   World mirror = scene.world;  // poses go in here to be measured with boxsim's own tests
   mirror.applyLaunches(std::numeric_limits<double>::infinity());
   engine.load(scene);
@@ -148,7 +145,7 @@ void runRepetition(const SceneSpec& spec, PeerEngine& engine, double dt, RunResu
 }
 
 void runOnce(const SceneSpec& spec, PeerEngine* engine, double dt) {
-  const PeerScene scene = sceneOf(spec);
+  const PeerScene scene = peerSceneOf(spec);
   if (!engine) return;
   engine->load(scene);
   const long steps = std::lround(spec.duration / dt);

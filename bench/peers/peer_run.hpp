@@ -70,6 +70,9 @@ struct RunResult {
 constexpr double kRestSpeed = 0.01;  ///< m/s
 constexpr double kRestSpin = 0.02;   ///< rad/s
 
+/// The scene `spec` describes, as every engine loads it (its restitution, sleeping, friction).
+PeerScene peerSceneOf(const SceneSpec& spec);
+
 /// Runs `spec` once under `engine` (a fresh engine per run) with steps of dt seconds; appends
 /// its step times to `result` and, on the first repetition, measures the physics.
 void runRepetition(const SceneSpec& spec, PeerEngine& engine, double dt, RunResult& result);

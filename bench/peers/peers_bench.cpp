@@ -2,7 +2,8 @@
 /// boxsim side by side with Bullet and ODE: the same scenes, in one process, one thread,
 /// Δt = 1/60 s, 1 kg unit cubes, every scene repeated and the engines interleaved. Writes the
 /// Markdown page docs/benchmarks.md (peer_report.hpp says what it holds) and the data of the
-/// scaling figure.
+/// scaling figure; with `--impact page.md`, the shot pyramids' impact with friction under every
+/// engine instead (docs/shot_impact.md, peer_impact.hpp).
 ///
 /// Usage: `build/bench/boxsim_peers [--scene clump1000] [--engine damped --engine bullet]
 /// [--restitution 0] [--sleep on|off] [--perturb 1] [--reps 3] [--table page.md] [--scaling scaling.dat]`.
@@ -26,6 +27,7 @@
 #include "boxsim/io/atomic_file.hpp"
 #include "boxsim/io/scene.hpp"
 #include "boxsim/io/scene_builders.hpp"
+#include "peer_impact.hpp"
 #include "peer_report.hpp"
 #include "peer_run.hpp"
 
@@ -310,6 +312,44 @@ std::string nativeSection(const std::vector<SceneSpec>& scenes, const std::strin
   return out.str();
 }
 
+/// The impact page (peer_impact.hpp): the shot scenes asked for (by default both shot
+/// pyramids), each at its own restitution and at 0 unless `restitution` fixes one, under the
+/// engines asked for or by default boxsim's damped integration and plain impulse step with the
+/// peers' friction and every peer found.
+std::string impactRun(const std::vector<std::string>& bases, std::optional<double> restitution,
+                      std::optional<bool> sleep, double friction,
+                      const std::vector<std::string>& engines, double dt,
+                      const std::string& stampText, const std::string& command) {
+  std::vector<ImpactRow> rows;
+  const std::vector<std::string> shots =
+      bases.empty() ? std::vector<std::string>{"pyramid10_shot", "pyramid20_shot"} : bases;
+  for (const std::string& base : shots)
+    for (const SceneSpec& own : chosenScenes({base}, restitution, sleep, friction, 1.0)) {
+      if (!own.launches)
+        throw std::invalid_argument("--impact: scene '" + base +
+                                    "' launches no box; use a shot scene");
+      std::vector<SceneSpec> specs = {own};
+      if (!restitution && own.restitution != 0.0) {
+        SceneSpec still = own;
+        still.restitution = 0.0;
+        specs.push_back(still);
+      }
+      for (const SceneSpec& spec : specs) {
+        std::vector<std::string> names = engines;
+        if (names.empty()) {
+          names = {"damped+friction", "impulse+friction"};
+          for (const std::string& peer : enginesOf(spec, {}))
+            if (peer.rfind("bullet", 0) == 0 || peer == "ode") names.push_back(peer);
+        }
+        for (const std::string& name : names) {
+          std::unique_ptr<PeerEngine> engine = makeEngine(name);
+          rows.push_back({spec.label(), engine->name(), measureImpact(spec, *engine, dt)});
+        }
+      }
+    }
+  return impactPage(rows, friction, stampText, command);
+}
+
 std::string commandLine(int argc, char** argv) {
   std::string text = "boxsim_peers";
   for (int i = 1; i < argc; ++i) text += std::string(" ") + argv[i];
@@ -369,6 +409,11 @@ int main(int argc, char** argv) {
   // under one engine; prints its mean ms per step and the digest of its final poses.
   std::string timingEngine;
   app.add_option("--timing-run", timingEngine)->group("");
+  std::string impactPath;
+  app.add_option("--impact", impactPath,
+                 "Measure the shot pyramids' impact under every engine with the same friction "
+                 "(at the scene's restitution and at 0) and write that page here "
+                 "(docs/shot_impact.md); times nothing");
   std::string nativePath;
   app.add_option("--native", nativePath,
                  "Compare boxsim damped with the boxsim_peers of a -march=native build at this path "
@@ -417,6 +462,13 @@ int main(int argc, char** argv) {
       throw std::invalid_argument(
           "--native measures the scenes as they are and writes its section alone: run it "
           "without --perturb and --baseline");
+    if (!impactPath.empty()) {
+      const std::string page = impactRun(sceneNames, restitution, sleep, friction, engineNames,
+                                         setup.dt, stamp(BOXSIM_SOURCE_DIR), setup.command);
+      std::cout << page;
+      boxsim::writeFileAtomically(impactPath, page);
+      return 0;
+    }
     if (!nativePath.empty()) {
       const std::string stampText = stamp(BOXSIM_SOURCE_DIR);
       const std::string section =
