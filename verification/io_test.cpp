@@ -48,6 +48,15 @@ TEST_CASE("Non-finite numbers are rejected", "[io][input]") {
   // JSON has no NaN or infinity literal; an overflowing literal is the way one gets in.
   const std::string e = errorOf(R"({"bodies": [{"half_extents": [0.5,0.5,0.5], "mass": 1e999}]})");
   CHECK_THAT(e, Contains("bad.json:1:53: the number 1e999 is not finite"));
+  // The literals C and JavaScript print are malformed JSON, and the error says why.
+  for (const std::string word : {"NaN", "Infinity", "-Infinity"}) {
+    INFO(word);
+    const std::string literal =
+        errorOf(R"({"bodies": [{"half_extents": [0.5,0.5,0.5], "mass": )" + word + "}]}");
+    CHECK_THAT(literal, Contains("bad.json:1:"));
+    CHECK_THAT(literal, Contains("is not a number in JSON"));
+    CHECK_THAT(literal, Contains("Fix: write a finite number"));
+  }
 }
 
 TEST_CASE("Non-positive masses and extents are rejected with the value and the fix", "[io][input]") {
