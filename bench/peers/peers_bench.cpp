@@ -150,19 +150,28 @@ std::unique_ptr<PeerEngine> makeEngine(const std::string& name) {
   return makeBoxsimEngine(name);
 }
 
+/// The peers found at configure time for one scene: Bullet, with its CCD too where a box is
+/// launched, and ODE.
+std::vector<std::string> peersOf(const SceneSpec& spec) {
+  std::vector<std::string> peers;
+#ifdef BOXSIM_HAVE_BULLET
+  peers.push_back("bullet");
+  if (spec.launches) peers.push_back("bullet/ccd");
+#endif
+#ifdef BOXSIM_HAVE_ODE
+  peers.push_back("ode");
+#endif
+  (void)spec;
+  return peers;
+}
+
 /// The engines of one scene: those asked for, or by default boxsim damped integration
-/// (frictionless as the thesis, and with the peers' friction) and every peer found, with Bullet's CCD too where a box is launched.
+/// (frictionless as the thesis, and with the peers' friction) and every peer found (peersOf).
 std::vector<std::string> enginesOf(const SceneSpec& spec, const std::vector<std::string>& asked) {
   if (!asked.empty()) return asked;
   std::vector<std::string> engines = {"damped", "damped+friction", "damped+chatter",
                                       "damped+under_load"};
-#ifdef BOXSIM_HAVE_BULLET
-  engines.push_back("bullet");
-  if (spec.launches) engines.push_back("bullet/ccd");
-#endif
-#ifdef BOXSIM_HAVE_ODE
-  engines.push_back("ode");
-#endif
+  for (const std::string& peer : peersOf(spec)) engines.push_back(peer);
   return engines;
 }
 
@@ -312,41 +321,40 @@ std::string nativeSection(const std::vector<SceneSpec>& scenes, const std::strin
   return out.str();
 }
 
-/// The impact page (peer_impact.hpp): the shot scenes asked for (by default both shot
-/// pyramids), each at its own restitution and at 0 unless `restitution` fixes one, under the
-/// engines asked for or by default boxsim's damped integration and plain impulse step with the
-/// peers' friction and every peer found.
+/// The impact page (peer_impact.hpp): the scenes asked for, which must launch a box, or by
+/// default every scene of the comparison that does (the shot pyramids), each at its own
+/// restitution and at 0 unless `restitution` fixes one, under the engines asked for or by
+/// default boxsim's damped integration and plain impulse step with the peers' friction and
+/// every peer found.
 std::string impactRun(const std::vector<std::string>& bases, std::optional<double> restitution,
                       std::optional<bool> sleep, double friction,
                       const std::vector<std::string>& engines, double dt,
                       const std::string& stampText, const std::string& command) {
   std::vector<ImpactRow> rows;
-  const std::vector<std::string> shots =
-      bases.empty() ? std::vector<std::string>{"pyramid10_shot", "pyramid20_shot"} : bases;
-  for (const std::string& base : shots)
-    for (const SceneSpec& own : chosenScenes({base}, restitution, sleep, friction, 1.0)) {
-      if (!own.launches)
-        throw std::invalid_argument("--impact: scene '" + base +
-                                    "' launches no box; use a shot scene");
-      std::vector<SceneSpec> specs = {own};
-      if (!restitution && own.restitution != 0.0) {
-        SceneSpec still = own;
-        still.restitution = 0.0;
-        specs.push_back(still);
+  for (const SceneSpec& own : chosenScenes(bases, restitution, sleep, friction, 1.0)) {
+    if (!own.launches) {
+      if (bases.empty()) continue;
+      throw std::invalid_argument("--impact: scene '" + own.base +
+                                  "' launches no box; use a shot scene");
+    }
+    std::vector<SceneSpec> specs = {own};
+    if (!restitution && own.restitution != 0.0) {
+      SceneSpec still = own;
+      still.restitution = 0.0;
+      specs.push_back(still);
+    }
+    for (const SceneSpec& spec : specs) {
+      std::vector<std::string> names = engines;
+      if (names.empty()) {
+        names = {"damped+friction", "impulse+friction"};
+        for (const std::string& peer : peersOf(spec)) names.push_back(peer);
       }
-      for (const SceneSpec& spec : specs) {
-        std::vector<std::string> names = engines;
-        if (names.empty()) {
-          names = {"damped+friction", "impulse+friction"};
-          for (const std::string& peer : enginesOf(spec, {}))
-            if (peer.rfind("bullet", 0) == 0 || peer == "ode") names.push_back(peer);
-        }
-        for (const std::string& name : names) {
-          std::unique_ptr<PeerEngine> engine = makeEngine(name);
-          rows.push_back({spec.label(), engine->name(), measureImpact(spec, *engine, dt)});
-        }
+      for (const std::string& name : names) {
+        std::unique_ptr<PeerEngine> engine = makeEngine(name);
+        rows.push_back({spec.label(), engine->name(), measureImpact(spec, *engine, dt)});
       }
     }
+  }
   return impactPage(rows, friction, stampText, command);
 }
 

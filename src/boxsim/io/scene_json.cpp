@@ -35,18 +35,18 @@ Json parseJson(const std::string& text, const std::string& source) {
   } catch (const Json::parse_error& e) {
     const std::size_t at = e.byte > 0 ? e.byte - 1 : 0;
     const std::pair<int, int> lc = lineColumn(text, at);
+    const std::string place =
+        source + ":" + std::to_string(lc.first) + ":" + std::to_string(lc.second);
     std::string what = e.what();
     const std::size_t colon = what.rfind(": ");
     if (colon != std::string::npos) what = what.substr(colon + 2);
     // NaN and Infinity, as C and JavaScript print them, are no JSON numbers: say so.
-    for (const char* word : {"NaN", "nan", "Infinity", "inf", "Inf"})
-      if (text.compare(at, std::string(word).size(), word) == 0)
-        throw SceneError(source + ":" + std::to_string(lc.first) + ":" + std::to_string(lc.second) +
-                         ": malformed JSON: " + what + " (" + word +
+    for (const std::string word : {"NaN", "nan", "Infinity", "inf"})
+      if (text.compare(at, word.size(), word) == 0)
+        throw SceneError(place + ": malformed JSON: " + what + " (" + word +
                          " is not a number in JSON, and a scene takes finite numbers only). Fix: "
                          "write a finite number there");
-    throw SceneError(source + ":" + std::to_string(lc.first) + ":" + std::to_string(lc.second) +
-                     ": malformed JSON: " + what + ". Fix: correct the JSON syntax there");
+    throw SceneError(place + ": malformed JSON: " + what + ". Fix: correct the JSON syntax there");
   } catch (const Json::out_of_range& e) {
     // A number literal too large for a double (1e400): nlohmann_json names the literal but not
     // its place, so find it in the text.
