@@ -11,9 +11,11 @@
 #include <memory>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "boxsim/collision/broad_phase.hpp"
+#include "boxsim/impulse_damped/contact_islands.hpp"
 #include "boxsim/impulse_damped/damped_integration.hpp"
 #include "boxsim/io/scene_builders.hpp"
 #include "boxsim/techniques.hpp"
@@ -274,6 +276,26 @@ TEST_CASE("Damped integration gives the same bits whether or not settled islands
       CHECK(states[1][4 * 13 + 7] > 0.0);
     }
   }
+}
+
+TEST_CASE("An island paired with a sleeper never settles, an island apart from sleepers does",
+          "[impulse_damped][determinism][islands]") {
+  // Bodies: 0 the ground, 1 a sleeper standing in as immovable, 2-3 resting on the sleeper,
+  // 4-5 resting on the ground. A pass that changes nothing settles 4-5 but not 2-3: the sleeper
+  // may wake within a later pass and push them (contact_islands.hpp).
+  ContactIslands islands;
+  islands.reset({0, 0, 1, 1, 1, 1}, {0, 1, 0, 0, 0, 0});
+  for (const auto& [a, b] : {std::pair{1, 2}, {2, 3}, {0, 4}, {4, 5}}) islands.join(a, b);
+  CHECK_FALSE(islands.settleUnchanged());
+  CHECK_FALSE(islands.settled(2));
+  CHECK_FALSE(islands.settled(3));
+  CHECK(islands.settled(4));
+  CHECK(islands.settled(5));
+  // The sleeper woke: built anew, it joins its partners, and with no sleeper left all settle.
+  islands.reset({0, 1, 1, 1, 1, 1}, {0, 0, 0, 0, 0, 0});
+  for (const auto& [a, b] : {std::pair{1, 2}, {2, 3}, {0, 4}, {4, 5}}) islands.join(a, b);
+  CHECK(islands.settleUnchanged());
+  CHECK(islands.settled(1));
 }
 
 TEST_CASE("Damped integration gives the same bits whether or not it keeps the narrow phases of "

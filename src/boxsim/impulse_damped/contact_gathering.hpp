@@ -91,6 +91,10 @@ class ContactGathering {
     return params_.gathering == ContactGatheringMode::OncePerStep ? &once_.islands() : nullptr;
   }
 
+  /// OncePerStep: the sleepers, whose island partners never settle
+  /// (OncePerStepGathering::setSleepers); nothing under EveryPass.
+  void setSleepers(const std::vector<char>* asleep) { once_.setSleepers(asleep); }
+
   /// The normal model and its memory, for contacts gathered outside the passes.
   ContactNormalTracker& normals() { return normals_; }
   /// The narrow phases of the step kept for the poses they ran at (KeptNarrowPhase), for the

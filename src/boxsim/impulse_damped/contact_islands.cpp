@@ -8,8 +8,10 @@
 
 namespace boxsim {
 
-void ContactIslands::reset(const std::vector<char>& movable) {
+void ContactIslands::reset(const std::vector<char>& movable, const std::vector<char>& wakeable) {
   const std::size_t n = movable.size();
+  wakeable_.assign(wakeable.begin(), wakeable.end());
+  pinned_.assign(n, 0);
   parent_.resize(n);
   std::iota(parent_.begin(), parent_.end(), 0);
   size_.assign(n, 1);
@@ -33,7 +35,13 @@ void ContactIslands::flatten() {
 }
 
 void ContactIslands::join(int a, int b) {
-  if (!movable_[static_cast<std::size_t>(a)] || !movable_[static_cast<std::size_t>(b)]) return;
+  const auto ua = static_cast<std::size_t>(a), ub = static_cast<std::size_t>(b);
+  if (!movable_[ua] || !movable_[ub]) {
+    // A sleeper's partner: its island never settles (the file comment).
+    if (!wakeable_.empty() && movable_[ua] != movable_[ub] && (wakeable_[ua] || wakeable_[ub]))
+      pinned_[root(movable_[ua] ? a : b)] = 1;
+    return;
+  }
   std::size_t ra = root(a), rb = root(b);
   if (ra == rb) return;
   // The larger island keeps its root (the lower index on a tie), so the paths stay short.
@@ -42,6 +50,7 @@ void ContactIslands::join(int a, int b) {
   size_[ra] += size_[rb];
   settled_[ra] = static_cast<char>(settled_[ra] && settled_[rb]);
   changed_[ra] = static_cast<char>(changed_[ra] || changed_[rb]);
+  pinned_[ra] = static_cast<char>(pinned_[ra] || pinned_[rb]);
 }
 
 void ContactIslands::markChanged(int i) {
@@ -52,7 +61,7 @@ bool ContactIslands::settleUnchanged() {
   bool all = true;
   for (std::size_t k = 0; k < parent_.size(); ++k) {
     if (!movable_[k] || parent_[k] != static_cast<int>(k)) continue;
-    if (!changed_[k]) settled_[k] = 1;
+    if (!changed_[k] && !pinned_[k]) settled_[k] = 1;
     changed_[k] = 0;
     all = all && settled_[k];
   }

@@ -25,6 +25,13 @@
 /// An island that stopped is taken up again when the pairs grow during the step (an impulse sped
 /// a body up past the bounds the candidates were found with) and join it to an active one:
 /// before the join it could touch nothing of the other, after it it may.
+///
+/// A sleeping body is the exception to "immovable bodies do not change": a contact of another
+/// island may wake it within a pass (Sleeping::beforeCollide), and awake it carries impulses
+/// into every island it touches, in that very pass, after the pass has been gathered without
+/// the islands that sat it out. So an island with a pair to a sleeper never settles (reset's
+/// `wakeable`): found in Fig. 6.7's frictional clump, where a woken box pushed a column whose
+/// island had settled, and the bits differed from the passes run for every island.
 #pragma once
 
 #include <cstddef>
@@ -45,10 +52,12 @@ enum class IslandSettling {
 class ContactIslands {
  public:
   /// One island per body (movable.size() of them), none settled; `movable[i]` false marks
-  /// body i as immovable, which join() never joins.
-  void reset(const std::vector<char>& movable);
+  /// body i as immovable, which join() never joins. `wakeable` (empty, or one flag per body)
+  /// marks the immovable bodies that may become movable within the passes (sleepers).
+  void reset(const std::vector<char>& movable, const std::vector<char>& wakeable = {});
   /// Joins the islands of bodies a and b (indices below the reset's size); does nothing when
-  /// either is immovable. The joined island is settled only if both were.
+  /// either is immovable, except that a movable body's island paired with a wakeable one never
+  /// settles from then on (the file comment). The joined island is settled only if both were.
   void join(int a, int b);
   /// Points every body straight at its island's root, so that the lookups of a pass (a few
   /// per contact) take one step until the next join.
@@ -80,6 +89,8 @@ class ContactIslands {
   std::vector<char> movable_;
   std::vector<char> settled_;  ///< per root
   std::vector<char> changed_;  ///< per root
+  std::vector<char> wakeable_;  ///< per body, reset()'s wakeable (empty: none)
+  std::vector<char> pinned_;    ///< per root: paired with a wakeable body, never settles
 };
 
 }  // namespace boxsim

@@ -152,6 +152,7 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   const Sleeping::RestoreOnExit restoreOnExit(sleeping_, world);
   // §4.5: with every movable body asleep nothing can happen; the step costs nothing.
   const bool awake = sleeping_.begin(world);
+  gathering_.setSleepers(params_.sleep.enabled ? &sleeping_.asleep() : nullptr);
   clock.lap(&DampedStepProfile::sleeping);
   if (!awake) {
     stats.sleeping = sleeping_.asleepCount();

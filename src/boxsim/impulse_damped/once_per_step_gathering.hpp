@@ -116,6 +116,10 @@ class OncePerStepGathering {
   bool stepPairs(const World& world, double margin, std::vector<std::pair<int, int>>& pairs) const;
   /// The islands of the step's candidate pairs, kept up to date pass by pass.
   ContactIslands& islands() { return islands_; }
+  /// The bodies that stand in as immovable but may wake within a pass (one flag per body, as
+  /// Sleeping::asleep(); null: none), read whenever the islands are built: an island paired
+  /// with one never settles (contact_islands.hpp). The vector must outlive the step.
+  void setSleepers(const std::vector<char>* asleep) { sleepers_ = asleep; }
 
   /// Builds of the cache since construction (one narrow phase of the slow pairs each).
   long narrowPhases() const { return narrowPhases_; }
@@ -151,8 +155,9 @@ class OncePerStepGathering {
   /// Movable body i's reach in this pass (passReach_); if fast, listed in fastThisPass_, and in
   /// outgrown_ when its predicted bounds leave its swept bounds.
   void classify(const World& world, std::size_t i, const Vec3& gravityStep, double dt);
-  /// Brings the islands up to the step's candidates and cached pairs: built anew after a sweep,
-  /// joined with the pairs added since otherwise.
+  /// Brings the islands up to the step's candidates and cached pairs: built anew after a sweep
+  /// or when a body's mobility changed since they were built (a sleeper woke), joined with the
+  /// pairs added since otherwise.
   void refreshIslands(const World& world);
   /// RESOLVECOLLISIONS / RESOLVECONTACTS L2-L3 for the pairs with a fast body, as written: the contacts of the pass'
   /// fast bodies and their slow partners at their predicted poses, into fastContacts_ in
@@ -199,6 +204,7 @@ class OncePerStepGathering {
   std::size_t joinedCandidates_ = 0;  ///< candidates joined into islands_ so far
   std::vector<char> skip_;            ///< per body, this pass: its island is settled
   std::vector<char> movable_;         ///< per body, refreshIslands(): movable
+  const std::vector<char>* sleepers_ = nullptr;  ///< setSleepers()
   bool anySkipped_ = false;           ///< this pass: some body's island is settled
   long narrowPhases_ = 0;
   long passNarrowPhases_ = 0;
