@@ -24,23 +24,41 @@ double applyNewtonianImpulse(RigidBody& a, RigidBody& b, const Vec3& p, const Ve
 
 double applyNewtonianImpulse(RigidBody& a, RigidBody& b, const Vec3& ra, const Vec3& rb,
                              const Vec3& n, double restitution) {
+  return applyNewtonianImpulse(a, b, ra, rb, n, restitution, false, false);
+}
+
+double applyNewtonianImpulse(RigidBody& a, RigidBody& b, const Vec3& ra, const Vec3& rb,
+                             const Vec3& n, double restitution, bool supportA, bool supportB) {
   const double vMinus = relativeNormalVelocity(a, b, ra, rb, n);
   if (vMinus >= 0.0) return 0.0;
   const double denominator = pairInverseMass(a, b, ra, rb, n);
   if (denominator <= 0.0) return 0.0;
   const double j = -(1.0 + restitution) * vMinus / denominator;
-  const Vec3 impulse = j * n;
+  // A body carried by a stable support lighter than itself: the support's inverse mass scaled by
+  // the ratio of their masses, as if it were as heavy as the body it carries (the DEVIATION in
+  // the header).
+  const auto onLighterSupport = [&](const RigidBody& body, const Vec3& r, const RigidBody& support,
+                                    const Vec3& rSupport) {
+    if (body.immovable || !(support.invMass > body.invMass)) return j;
+    const double k = body.invMass + rotationalInverseMass(body.Iinv, r, n);
+    const double kSupport = support.invMass + rotationalInverseMass(support.Iinv, rSupport, n);
+    return -(1.0 + restitution) * vMinus / (k + kSupport * (body.invMass / support.invMass));
+  };
+  const double jA = supportB ? onLighterSupport(a, ra, b, rb) : j;
+  const double jB = supportA ? onLighterSupport(b, rb, a, ra) : j;
   if (!a.immovable) {
+    const Vec3 impulse = jA * n;
     a.s.P -= impulse;
     a.s.L -= ra.cross(impulse);
     a.updateVelocities();
   }
   if (!b.immovable) {
+    const Vec3 impulse = jB * n;
     b.s.P += impulse;
     b.s.L += rb.cross(impulse);
     b.updateVelocities();
   }
-  return j;
+  return std::max(jA, jB);
 }
 
 namespace {

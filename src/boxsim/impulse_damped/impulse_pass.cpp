@@ -56,17 +56,18 @@ struct SumBits {
 /// point found by COLLIDE L7, ContactNormalTracker::contactOf); returns j.
 double impulseWithGravity(RigidBody& a, RigidBody& b, const ImpulseContact& contact,
                           double restitution, const Vec3& deltaV, FrictionTotals* totals,
-                          bool restarted) {
+                          bool restarted, bool supportA, bool supportB) {
   addVelocity(a, deltaV);
   addVelocity(b, deltaV);
-  return contactImpulse(a, b, contact, restitution, totals, restarted);
+  return contactImpulse(a, b, contact, restitution, totals, restarted, supportA, supportB);
 }
 }  // namespace
 
 double contactImpulse(RigidBody& a, RigidBody& b, const ImpulseContact& contact, double restitution,
-                      FrictionTotals* totals, bool restarted) {
+                      FrictionTotals* totals, bool restarted, bool supportA, bool supportB) {
   if (contact.friction.frictionless())
-    return applyNewtonianImpulse(a, b, contact.ra, contact.rb, contact.normal, restitution);
+    return applyNewtonianImpulse(a, b, contact.ra, contact.rb, contact.normal, restitution,
+                                 supportA, supportB);
   FrictionSum alone;
   FrictionSum& sum = totals ? totals->at(contact.a, contact.b) : alone;
   // Friction first, on the budget of the passes before, so that the normal impulse, which
@@ -105,7 +106,8 @@ double contactImpulse(RigidBody& a, RigidBody& b, const ImpulseContact& contact,
   }
   applyPatchFriction(a, b, contact.ra, contact.rb, contact.normal, contact.friction, patch, sum);
   sum.normal = impulses;
-  const double j = applyNewtonianImpulse(a, b, contact.ra, contact.rb, contact.normal, restitution);
+  const double j = applyNewtonianImpulse(a, b, contact.ra, contact.rb, contact.normal, restitution,
+                                         supportA, supportB);
   sum.normal = restarted ? std::max(sum.normal, j) : sum.normal + j;
   return j;
 }
@@ -120,8 +122,15 @@ double collide(World& world, const ImpulseContact& contact, double restitution, 
   // A geometrically stable body's vertical momentum is reset below, so each pass's impulse on
   // its contacts is a new estimate of the support, not an increment of it.
   const auto isStable = [&](int i) { return !stable.empty() && stable[i] && !world.bodies[i].immovable; };
+  // A stable body under the other one carries it (applyNewtonianImpulse's supports): n points
+  // from a to b, so a is below when n points up. Two stable bodies, or a stable body and an
+  // immovable one, take A.2's impulse.
+  const bool stableA = isStable(contact.a), stableB = isStable(contact.b);
+  const double up = contact.normal.dot(-world.gravity);
+  const bool supportA = stableA && !stableB && !b.immovable && up > 0.0;
+  const bool supportB = stableB && !stableA && !a.immovable && up < 0.0;
   const double j = impulseWithGravity(a, b, contact, restitution, deltaV, totals,
-                                      isStable(contact.a) || isStable(contact.b));
+                                      stableA || stableB, supportA, supportB);
   // COLLIDE L9-L10.
   addVelocity(a, -deltaV);
   addVelocity(b, -deltaV);
@@ -151,7 +160,7 @@ double collideImpulse(const World& world, const ImpulseContact& contact, double 
   RigidBody a = world.bodies[contact.a];
   RigidBody b = world.bodies[contact.b];
   return impulseWithGravity(a, b, contact, restitution, gravityVelocity(world, gravity, dt), nullptr,
-                            false);
+                            false, false, false);
 }
 
 PassResult impulsePass(World& world, double dt, double restitution, GravityMode predict,

@@ -28,9 +28,12 @@ namespace boxsim {
 /// resting contact's friction (restarted, or approaching at no more than g Δt and not parting)
 /// also has at least its part of the load of the body it carries (FrictionTotals::supportShare,
 /// from the pass' FrictionTotals::shareWeights).
+/// `supportA` / `supportB` mark a geometrically stable body under the other, which carries it
+/// (applyNewtonianImpulse with supports).
 /// \return the normal impulse, N s.
 double contactImpulse(RigidBody& a, RigidBody& b, const ImpulseContact& contact, double restitution,
-                      FrictionTotals* totals, bool restarted = false);
+                      FrictionTotals* totals, bool restarted = false, bool supportA = false,
+                      bool supportB = false);
 
 /// COLLIDE L6 and L10 for one body: `deltaV` (m/s) added to its velocity, unless immovable.
 void addVelocity(RigidBody& body, const Vec3& deltaV);
