@@ -222,7 +222,7 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
                   &dampedPoses_);
   } else {
     // DAMPENOBJECTS L22: without damping, its position update alone.
-    predictPositions(world, dt, Vec3::Zero(), params_.impulse.integrator);
+    integratePositions(world, dt, params_.impulse.integrator, dampedPoses_);
   }
   clock.lap(&DampedStepProfile::velocitiesAndDamping);
   // DAMPEDINTEGRATION L5: FIXCONTACTCONSTRAINTS, and the contacts after it.

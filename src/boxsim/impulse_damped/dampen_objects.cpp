@@ -376,7 +376,7 @@ DampingStats dampenObjects(World& world, double dt, const std::vector<char>& tou
   // would count the step's gravity twice in the positions.
   SavedPoses ownPoses;
   SavedPoses& old = before ? *before : ownPoses;
-  predictPositions(world, dt, Vec3::Zero(), integrator, old);
+  integratePositions(world, dt, integrator, old);
   // DAMPENOBJECTS L23-L28: a body that would move less than ε10 and turn less than ε11 stays put.
   // DEVIATION(DAMPENOBJECTS L23): only bodies that had a contact interaction and lie with a face
   // perpendicular to gravity (§5.3's third mark of a chattering body) are snapped. A body in

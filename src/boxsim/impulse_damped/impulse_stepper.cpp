@@ -47,7 +47,7 @@ StepStats ImpulseStepper::step(World& world, double dt) {
   // 4. Shock propagation.
   if (params_.shockPropagation) stats.events += propagateShock(world, dt, margin, gathering_, totals);
   // 5. Positions.
-  predictPositions(world, dt, Vec3::Zero(), params_.impulse.integrator);
+  integratePositions(world, dt, params_.impulse.integrator, poses_);
   gathering_.endStep();
   stats.contacts = static_cast<int>(findContacts(world, restingContactMargin(world, margin, dt)).size());
   return stats;

@@ -9,6 +9,7 @@
 #include "boxsim/impulse_damped/contact_gathering.hpp"
 #include "boxsim/impulse_damped/friction_totals.hpp"
 #include "boxsim/impulse_damped/impulse_params.hpp"
+#include "boxsim/impulse_damped/predicted_positions.hpp"
 
 namespace boxsim {
 
@@ -46,13 +47,14 @@ class ImpulseStepper final : public Stepper {
   /// 2. velocities: v += g Δt;
   /// 3. contacts: `contactIterations` passes with restitution -1 + i/N (\alg{RESOLVECONTACTS L5});
   /// 4. shock propagation (when enabled);
-  /// 5. positions: x += Δt v, q turned by Δt ω.
+  /// 5. positions: x += Δt v, q turned by Δt ω, the rotational energy held (integratePositions).
   StepStats step(World& world, double dt) override;
 
  private:
   ImpulseStepperParams params_;
   FrictionTotals frictionTotals_;  ///< the step's impulses per contact point, for friction
   ContactGathering gathering_;
+  SavedPoses poses_;  ///< the poses before the step's last stage (integratePositions)
 };
 
 }  // namespace boxsim

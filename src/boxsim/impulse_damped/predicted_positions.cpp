@@ -2,6 +2,8 @@
 /// integrateObjectPositions and revertToOriginalPositions (\alg{RESOLVECOLLISIONS L2}, \alg{RESOLVECOLLISIONS L6}).
 #include "boxsim/impulse_damped/predicted_positions.hpp"
 
+#include <cmath>
+
 namespace boxsim {
 
 void movePredicted(RigidBody& body, double dt, const Vec3& extraVelocity,
@@ -29,6 +31,21 @@ void predictPositions(World& world, double dt, const Vec3& extraVelocity, Integr
   for (RigidBody& body : world.bodies) {
     saved.push_back({body.s.x, body.s.q, body.R, body.Iinv, body.immovable});
     if (!body.immovable) movePredicted(body, dt, extraVelocity, integrator);
+  }
+}
+
+void integratePositions(World& world, double dt, Integrator integrator, SavedPoses& saved) {
+  predictPositions(world, dt, Vec3::Zero(), integrator, saved);
+  if (integrator == Integrator::SplitRotation) return;
+  for (std::size_t i = 0; i < world.bodies.size(); ++i) {
+    RigidBody& body = world.bodies[i];
+    if (body.immovable) continue;
+    // ½ L·ω before the turn (I⁻¹ at the pose before) and after it; L itself was not changed.
+    const double before = body.s.L.dot(saved[i].Iinv * body.s.L);
+    const double after = body.s.L.dot(body.omega);
+    if (!(after > before * (1.0 + 1e-9))) continue;
+    body.s.L *= std::sqrt(before / after);
+    body.updateVelocities();
   }
 }
 
