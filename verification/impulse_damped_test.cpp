@@ -140,6 +140,16 @@ double totalEnergy(const World& world) {
            b.mass * world.gravity.dot(b.s.x);
   return e;
 }
+
+/// The largest totalEnergy of `world` over `steps` steps of `stepper` (its start included), J.
+double mostEnergy(World& world, Stepper& stepper, int steps) {
+  double most = totalEnergy(world);
+  for (int k = 0; k < steps; ++k) {
+    stepper.step(world, kDt);
+    most = std::max(most, totalEnergy(world));
+  }
+  return most;
+}
 }  // namespace
 
 TEST_CASE("A body dropped on a geometrically stable one far lighter than itself never gains "
@@ -152,21 +162,20 @@ TEST_CASE("A body dropped on a geometrically stable one far lighter than itself 
   // FIXCONTACTCONSTRAINTS may lift a body by the slop at most: the energy stays below its start
   // plus the heavy body's weight times the slop.
   const double slop = FixContactParams{}.slop * 0.5;  // unit cubes: ℓ = 0.5 m
+  const auto keepsEnergy = [slop](World& world, Stepper& stepper, double heaviest, int steps) {
+    const double start = totalEnergy(world);
+    const double most = mostEnergy(world, stepper, steps);
+    INFO("energy at the start " << start << " J, at most " << most << " J");
+    CHECK(most <= start + heaviest * 9.81 * slop);
+  };
   SECTION("1000 kg on 1 kg, unit cubes") {
     Scene scene = parseScene(R"({"restitution": 0.3, "friction": 0.5, "ground": {"height": 0},
         "bodies": [{"half_extents": [0.5, 0.5, 0.5], "mass": 1, "position": [0, 0.5, 0]},
                    {"half_extents": [0.5, 0.5, 0.5], "mass": 1000, "position": [0.05, 2.5, 0.02]}]})",
                              "heavy_on_unit.json");
     World& world = scene.world;
-    const double start = totalEnergy(world), bound = start + 1000.0 * 9.81 * slop;
     DampedIntegrationStepper stepper;
-    double most = start;
-    for (int k = 0; k < 10 * 60; ++k) {
-      stepper.step(world, kDt);
-      most = std::max(most, totalEnergy(world));
-    }
-    INFO("energy at the start " << start << " J, at most " << most << " J");
-    CHECK(most <= bound);
+    keepsEnergy(world, stepper, 1000.0, 10 * 60);
     // It rests on the light cube, and both sleep.
     const int light = 1, heavy = 2;
     CHECK(std::abs(world.bodies[heavy].s.x.y() - 1.5) <= slop);
@@ -175,18 +184,11 @@ TEST_CASE("A body dropped on a geometrically stable one far lighter than itself 
     CHECK(stepper.asleep()[heavy]);
   }
   SECTION("100 kg on 0.1 kg (scenes/weak/heavy_on_light.json)") {
-    Scene scene = loadScene(std::string(BOXSIM_SOURCE_DIR) +
-                            "/chapters/impulse_damped/scenes/weak/heavy_on_light.json");
-    World& world = scene.world;
-    const double start = totalEnergy(world), bound = start + 100.0 * 9.81 * slop;
+    std::string path = BOXSIM_SOURCE_DIR;
+    path += "/chapters/impulse_damped/scenes/weak/heavy_on_light.json";
+    Scene scene = loadScene(path);
     DampedIntegrationStepper stepper;
-    double most = start;
-    for (int k = 0; k < 30 * 60; ++k) {
-      stepper.step(world, kDt);
-      most = std::max(most, totalEnergy(world));
-    }
-    INFO("energy at the start " << start << " J, at most " << most << " J");
-    CHECK(most <= bound);
+    keepsEnergy(scene.world, stepper, 100.0, 30 * 60);
   }
   SECTION("The impulse itself: a support as heavy as its load changes nothing, a lighter one "
           "stops the load as one as heavy would") {
@@ -907,11 +909,7 @@ TEST_CASE("A long rod tossed tumbling gains no energy in flight and comes to res
     World& world = scene.world;
     const double start = totalEnergy(world), bound = start + 3.0 * 9.81 * slop;
     std::unique_ptr<Stepper> stepper = makeStepper(method);
-    double most = start;
-    for (int k = 0; k < 10 * 60; ++k) {
-      stepper->step(world, kDt);
-      most = std::max(most, totalEnergy(world));
-    }
+    const double most = mostEnergy(world, *stepper, 10 * 60);
     INFO(method << ": energy at the start " << start << " J, at most " << most << " J, at 10 s "
                 << totalEnergy(world) << " J");
     CHECK(most <= bound);
