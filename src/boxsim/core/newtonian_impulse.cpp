@@ -24,11 +24,28 @@ double applyNewtonianImpulse(RigidBody& a, RigidBody& b, const Vec3& p, const Ve
 
 double applyNewtonianImpulse(RigidBody& a, RigidBody& b, const Vec3& ra, const Vec3& rb,
                              const Vec3& n, double restitution) {
-  return applyNewtonianImpulse(a, b, ra, rb, n, restitution, false, false);
+  const double vMinus = relativeNormalVelocity(a, b, ra, rb, n);
+  if (vMinus >= 0.0) return 0.0;
+  const double denominator = pairInverseMass(a, b, ra, rb, n);
+  if (denominator <= 0.0) return 0.0;
+  const double j = -(1.0 + restitution) * vMinus / denominator;
+  const Vec3 impulse = j * n;
+  if (!a.immovable) {
+    a.s.P -= impulse;
+    a.s.L -= ra.cross(impulse);
+    a.updateVelocities();
+  }
+  if (!b.immovable) {
+    b.s.P += impulse;
+    b.s.L += rb.cross(impulse);
+    b.updateVelocities();
+  }
+  return j;
 }
 
 double applyNewtonianImpulse(RigidBody& a, RigidBody& b, const Vec3& ra, const Vec3& rb,
                              const Vec3& n, double restitution, bool supportA, bool supportB) {
+  if (!supportA && !supportB) return applyNewtonianImpulse(a, b, ra, rb, n, restitution);
   const double vMinus = relativeNormalVelocity(a, b, ra, rb, n);
   if (vMinus >= 0.0) return 0.0;
   const double denominator = pairInverseMass(a, b, ra, rb, n);

@@ -126,9 +126,12 @@ double collide(World& world, const ImpulseContact& contact, double restitution, 
   // from a to b, so a is below when n points up. Two stable bodies, or a stable body and an
   // immovable one, take A.2's impulse.
   const bool stableA = isStable(contact.a), stableB = isStable(contact.b);
-  const double up = contact.normal.dot(-world.gravity);
-  const bool supportA = stableA && !stableB && !b.immovable && up > 0.0;
-  const bool supportB = stableB && !stableA && !a.immovable && up < 0.0;
+  bool supportA = false, supportB = false;
+  if (stableA != stableB) {
+    const double up = -contact.normal.dot(world.gravity);
+    supportA = stableA && !b.immovable && up > 0.0;
+    supportB = stableB && !a.immovable && up < 0.0;
+  }
   const double j = impulseWithGravity(a, b, contact, restitution, deltaV, totals,
                                       stableA || stableB, supportA, supportB);
   // COLLIDE L9-L10.

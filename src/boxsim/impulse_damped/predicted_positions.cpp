@@ -39,7 +39,9 @@ void integratePositions(World& world, double dt, Integrator integrator, SavedPos
   if (integrator == Integrator::SplitRotation) return;
   for (std::size_t i = 0; i < world.bodies.size(); ++i) {
     RigidBody& body = world.bodies[i];
-    if (body.immovable) continue;
+    // A body whose principal inverse inertias are equal (a cube) turns without changing ½ L·ω.
+    const Vec3& d = body.IbodyInvDiag;
+    if (body.immovable || (d.x() == d.y() && d.y() == d.z())) continue;
     // ½ L·ω before the turn (I⁻¹ at the pose before) and after it; L itself was not changed.
     const double before = body.s.L.dot(saved[i].Iinv * body.s.L);
     const double after = body.s.L.dot(body.omega);
