@@ -22,6 +22,25 @@ double applyNewtonianImpulse(RigidBody& a, RigidBody& b, const Vec3& p, const Ve
   return applyNewtonianImpulse(a, b, Vec3(p - a.s.x), Vec3(p - b.s.x), n, restitution);
 }
 
+namespace {
+/// -jA n on a at lever arm ra and +jB n on b at rb (N s), each unless immovable.
+void applyNormalImpulses(RigidBody& a, RigidBody& b, const Vec3& ra, const Vec3& rb, const Vec3& n,
+                         double jA, double jB) {
+  if (!a.immovable) {
+    const Vec3 impulse = jA * n;
+    a.s.P -= impulse;
+    a.s.L -= ra.cross(impulse);
+    a.updateVelocities();
+  }
+  if (!b.immovable) {
+    const Vec3 impulse = jB * n;
+    b.s.P += impulse;
+    b.s.L += rb.cross(impulse);
+    b.updateVelocities();
+  }
+}
+}  // namespace
+
 double applyNewtonianImpulse(RigidBody& a, RigidBody& b, const Vec3& ra, const Vec3& rb,
                              const Vec3& n, double restitution) {
   const double vMinus = relativeNormalVelocity(a, b, ra, rb, n);
@@ -29,17 +48,7 @@ double applyNewtonianImpulse(RigidBody& a, RigidBody& b, const Vec3& ra, const V
   const double denominator = pairInverseMass(a, b, ra, rb, n);
   if (denominator <= 0.0) return 0.0;
   const double j = -(1.0 + restitution) * vMinus / denominator;
-  const Vec3 impulse = j * n;
-  if (!a.immovable) {
-    a.s.P -= impulse;
-    a.s.L -= ra.cross(impulse);
-    a.updateVelocities();
-  }
-  if (!b.immovable) {
-    b.s.P += impulse;
-    b.s.L += rb.cross(impulse);
-    b.updateVelocities();
-  }
+  applyNormalImpulses(a, b, ra, rb, n, j, j);
   return j;
 }
 
@@ -63,18 +72,7 @@ double applyNewtonianImpulse(RigidBody& a, RigidBody& b, const Vec3& ra, const V
   };
   const double jA = supportB ? onLighterSupport(a, ra, b, rb) : j;
   const double jB = supportA ? onLighterSupport(b, rb, a, ra) : j;
-  if (!a.immovable) {
-    const Vec3 impulse = jA * n;
-    a.s.P -= impulse;
-    a.s.L -= ra.cross(impulse);
-    a.updateVelocities();
-  }
-  if (!b.immovable) {
-    const Vec3 impulse = jB * n;
-    b.s.P += impulse;
-    b.s.L += rb.cross(impulse);
-    b.updateVelocities();
-  }
+  applyNormalImpulses(a, b, ra, rb, n, jA, jB);
   return std::max(jA, jB);
 }
 
