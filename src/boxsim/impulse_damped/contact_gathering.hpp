@@ -91,7 +91,7 @@ class ContactGathering {
     return params_.gathering == ContactGatheringMode::OncePerStep ? &once_.islands() : nullptr;
   }
 
-  /// OncePerStep: the sleepers, whose island partners never settle
+  /// OncePerStep: the sleepers, which join their partners' islands
   /// (OncePerStepGathering::setSleepers); nothing under EveryPass.
   void setSleepers(const std::vector<char>* asleep) { once_.setSleepers(asleep); }
 

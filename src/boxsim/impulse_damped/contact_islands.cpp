@@ -10,12 +10,13 @@ namespace boxsim {
 
 void ContactIslands::reset(const std::vector<char>& movable, const std::vector<char>& wakeable) {
   const std::size_t n = movable.size();
-  wakeable_.assign(wakeable.begin(), wakeable.end());
-  pinned_.assign(n, 0);
   parent_.resize(n);
   std::iota(parent_.begin(), parent_.end(), 0);
   size_.assign(n, 1);
   movable_.assign(movable.begin(), movable.end());
+  // A sleeper joins its partners' islands (the file comment).
+  if (wakeable.size() == n)
+    for (std::size_t i = 0; i < n; ++i) movable_[i] = static_cast<char>(movable_[i] || wakeable[i]);
   settled_.assign(n, 0);
   changed_.assign(n, 0);
 }
@@ -36,12 +37,7 @@ void ContactIslands::flatten() {
 
 void ContactIslands::join(int a, int b) {
   const auto ua = static_cast<std::size_t>(a), ub = static_cast<std::size_t>(b);
-  if (!movable_[ua] || !movable_[ub]) {
-    // A sleeper's partner: its island never settles (the file comment).
-    if (!wakeable_.empty() && movable_[ua] != movable_[ub] && (wakeable_[ua] || wakeable_[ub]))
-      pinned_[root(movable_[ua] ? a : b)] = 1;
-    return;
-  }
+  if (!movable_[ua] || !movable_[ub]) return;
   std::size_t ra = root(a), rb = root(b);
   if (ra == rb) return;
   // The larger island keeps its root (the lower index on a tie), so the paths stay short.
@@ -50,7 +46,6 @@ void ContactIslands::join(int a, int b) {
   size_[ra] += size_[rb];
   settled_[ra] = static_cast<char>(settled_[ra] && settled_[rb]);
   changed_[ra] = static_cast<char>(changed_[ra] || changed_[rb]);
-  pinned_[ra] = static_cast<char>(pinned_[ra] || pinned_[rb]);
 }
 
 void ContactIslands::markChanged(int i) {
@@ -61,7 +56,7 @@ bool ContactIslands::settleUnchanged() {
   bool all = true;
   for (std::size_t k = 0; k < parent_.size(); ++k) {
     if (!movable_[k] || parent_[k] != static_cast<int>(k)) continue;
-    if (!changed_[k] && !pinned_[k]) settled_[k] = 1;
+    if (!changed_[k]) settled_[k] = 1;
     changed_[k] = 0;
     all = all && settled_[k];
   }

@@ -146,17 +146,12 @@ void OncePerStepGathering::sortBodies(const World& world, const Vec3& gravitySte
 
 void OncePerStepGathering::refreshIslands(const World& world) {
   const std::size_t n = world.bodies.size();
-  // A sleeper woken within a pass stood immovable when the islands were built, joining none.
-  bool mobilityChanged = movable_.size() != n;
-  for (std::size_t i = 0; i < n && !mobilityChanged; ++i)
-    mobilityChanged = movable_[i] != static_cast<char>(!world.bodies[i].immovable);
-  if (islandSweep_ != candidates_.sweeps() || islands_.size() != n || mobilityChanged) {
+  if (islandSweep_ != candidates_.sweeps() || islands_.size() != n) {
     // A new sweep: the islands of its pairs and of the cached ones, every island active.
-    std::vector<char>& movable = movable_;
-    movable.resize(n);
-    for (std::size_t i = 0; i < n; ++i) movable[i] = static_cast<char>(!world.bodies[i].immovable);
+    movable_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) movable_[i] = static_cast<char>(!world.bodies[i].immovable);
     static const std::vector<char> none;
-    islands_.reset(movable, sleepers_ && sleepers_->size() == n ? *sleepers_ : none);
+    islands_.reset(movable_, sleepers_ && sleepers_->size() == n ? *sleepers_ : none);
     for (const PairReach& pair : slowPairs_.reaches()) islands_.join(pair.a, pair.b);
     joinedCandidates_ = 0;
     islandSweep_ = candidates_.sweeps();

@@ -117,8 +117,8 @@ class OncePerStepGathering {
   /// The islands of the step's candidate pairs, kept up to date pass by pass.
   ContactIslands& islands() { return islands_; }
   /// The bodies that stand in as immovable but may wake within a pass (one flag per body, as
-  /// Sleeping::asleep(); null: none), read whenever the islands are built: an island paired
-  /// with one never settles (contact_islands.hpp). The vector must outlive the step.
+  /// Sleeping::asleep(); null: none), read whenever the islands are built: they join their
+  /// partners' islands (contact_islands.hpp). The vector must outlive the step.
   void setSleepers(const std::vector<char>* asleep) { sleepers_ = asleep; }
 
   /// Builds of the cache since construction (one narrow phase of the slow pairs each).
@@ -156,8 +156,8 @@ class OncePerStepGathering {
   /// outgrown_ when its predicted bounds leave its swept bounds.
   void classify(const World& world, std::size_t i, const Vec3& gravityStep, double dt);
   /// Brings the islands up to the step's candidates and cached pairs: built anew after a sweep
-  /// or when a body's mobility changed since they were built (a sleeper woke), joined with the
-  /// pairs added since otherwise.
+  /// (a sleeper that wakes changes the bodies' mobility, and gather() then builds the cache and
+  /// sweeps anew), joined with the pairs added since otherwise.
   void refreshIslands(const World& world);
   /// RESOLVECOLLISIONS / RESOLVECONTACTS L2-L3 for the pairs with a fast body, as written: the contacts of the pass'
   /// fast bodies and their slow partners at their predicted poses, into fastContacts_ in
