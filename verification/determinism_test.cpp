@@ -281,10 +281,11 @@ TEST_CASE("Damped integration gives the same bits whether or not settled islands
 TEST_CASE("A sleeper joins its partners' islands: what may wake it and what it may push settle "
           "together", "[impulse_damped][determinism][islands]") {
   // Bodies: 0 the ground, 1 a sleeper standing in as immovable, 2 resting on the sleeper, 3
-  // beside it on the ground touching the sleeper, 4-5 resting on the ground apart. The sleeper
-  // joins 2 and 3 into one island; the ground joins nothing.
+  // beside it on the ground touching the sleeper, 4-5 resting on the ground apart. The
+  // gathering counts the sleeper as movable (it may wake), so it joins 2 and 3 into one island;
+  // the ground joins nothing.
   ContactIslands islands;
-  islands.reset({0, 0, 1, 1, 1, 1}, {0, 1, 0, 0, 0, 0});
+  islands.reset({0, 1, 1, 1, 1, 1});
   for (const auto& [a, b] : {std::pair{1, 2}, {1, 3}, {0, 3}, {0, 4}, {4, 5}}) islands.join(a, b);
   islands.flatten();
   // A pass in which 2 changed (a contact woke the sleeper under it, say): 1-3 stay active with
@@ -300,7 +301,7 @@ TEST_CASE("A sleeper joins its partners' islands: what may wake it and what it m
   CHECK(islands.settled(1));
   CHECK(islands.settled(3));
   CHECK_FALSE(islands.settled(0));
-  // Without wakeable flags the sleeper is immovable: 2 and 3 are islands of their own.
+  // Counted as immovable, the sleeper would join nothing: 2 and 3 are islands of their own.
   islands.reset({0, 0, 1, 1, 1, 1});
   for (const auto& [a, b] : {std::pair{1, 2}, {1, 3}, {0, 3}, {0, 4}, {4, 5}}) islands.join(a, b);
   islands.markChanged(2);

@@ -39,15 +39,24 @@ void applyNormalImpulses(RigidBody& a, RigidBody& b, const Vec3& ra, const Vec3&
     b.updateVelocities();
   }
 }
+
+/// A.2's impulse magnitude j = -(1 + e) v⁻ / k at the contact (N s) into `j`, v⁻ (m/s) into
+/// `vMinus`; false (no impulse) when the pair is not approaching or cannot be pushed (k <= 0).
+bool newtonianMagnitude(const RigidBody& a, const RigidBody& b, const Vec3& ra, const Vec3& rb,
+                        const Vec3& n, double restitution, double& vMinus, double& j) {
+  vMinus = relativeNormalVelocity(a, b, ra, rb, n);
+  if (vMinus >= 0.0) return false;
+  const double denominator = pairInverseMass(a, b, ra, rb, n);
+  if (denominator <= 0.0) return false;
+  j = -(1.0 + restitution) * vMinus / denominator;
+  return true;
+}
 }  // namespace
 
 double applyNewtonianImpulse(RigidBody& a, RigidBody& b, const Vec3& ra, const Vec3& rb,
                              const Vec3& n, double restitution) {
-  const double vMinus = relativeNormalVelocity(a, b, ra, rb, n);
-  if (vMinus >= 0.0) return 0.0;
-  const double denominator = pairInverseMass(a, b, ra, rb, n);
-  if (denominator <= 0.0) return 0.0;
-  const double j = -(1.0 + restitution) * vMinus / denominator;
+  double vMinus = 0.0, j = 0.0;
+  if (!newtonianMagnitude(a, b, ra, rb, n, restitution, vMinus, j)) return 0.0;
   applyNormalImpulses(a, b, ra, rb, n, j, j);
   return j;
 }
@@ -55,11 +64,8 @@ double applyNewtonianImpulse(RigidBody& a, RigidBody& b, const Vec3& ra, const V
 double applyNewtonianImpulse(RigidBody& a, RigidBody& b, const Vec3& ra, const Vec3& rb,
                              const Vec3& n, double restitution, bool supportA, bool supportB) {
   if (!supportA && !supportB) return applyNewtonianImpulse(a, b, ra, rb, n, restitution);
-  const double vMinus = relativeNormalVelocity(a, b, ra, rb, n);
-  if (vMinus >= 0.0) return 0.0;
-  const double denominator = pairInverseMass(a, b, ra, rb, n);
-  if (denominator <= 0.0) return 0.0;
-  const double j = -(1.0 + restitution) * vMinus / denominator;
+  double vMinus = 0.0, j = 0.0;
+  if (!newtonianMagnitude(a, b, ra, rb, n, restitution, vMinus, j)) return 0.0;
   // A body carried by a stable support lighter than itself: the support's inverse mass scaled by
   // the ratio of their masses, as if it were as heavy as the body it carries (the DEVIATION in
   // the header).

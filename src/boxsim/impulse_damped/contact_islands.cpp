@@ -8,15 +8,12 @@
 
 namespace boxsim {
 
-void ContactIslands::reset(const std::vector<char>& movable, const std::vector<char>& wakeable) {
+void ContactIslands::reset(const std::vector<char>& movable) {
   const std::size_t n = movable.size();
   parent_.resize(n);
   std::iota(parent_.begin(), parent_.end(), 0);
   size_.assign(n, 1);
   movable_.assign(movable.begin(), movable.end());
-  // A sleeper joins its partners' islands (the file comment).
-  if (wakeable.size() == n)
-    for (std::size_t i = 0; i < n; ++i) movable_[i] = static_cast<char>(movable_[i] || wakeable[i]);
   settled_.assign(n, 0);
   changed_.assign(n, 0);
 }

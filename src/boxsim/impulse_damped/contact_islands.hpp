@@ -1,11 +1,11 @@
 /// \file
 /// Islands of the step's contact graph, for stopping the passes of \alg{A.2} island by island.
 ///
-/// The graph's vertices are the movable bodies, its edges the pairs that may touch in the step
-/// (the step's candidate pairs of ContactGathering, OncePerStep). Immovable bodies, the ground
-/// say, join nothing: an impulse never moves them, so nothing passes through them from one
-/// island to another. Bullet and ODE group bodies into islands the same way, for their solvers
-/// and for sleeping. Sleeping bodies standing in as immovable (\thesis{§4.5}) join (below).
+/// The graph's vertices are the bodies an impulse may move within the passes, its edges the
+/// pairs that may touch in the step (the step's candidate pairs of ContactGathering,
+/// OncePerStep). Immovable bodies, the ground say, join nothing: an impulse never moves them, so
+/// nothing passes through them from one island to another. Bullet and ODE group bodies into
+/// islands the same way, for their solvers and for sleeping.
 ///
 /// Why a pass may stop for one island: a pass of RESOLVECOLLISIONS or RESOLVECONTACTS (\alg{A.2})
 /// reads, for the contacts of an island, only the poses and momenta of its bodies (and of the
@@ -26,13 +26,13 @@
 /// a body up past the bounds the candidates were found with) and join it to an active one:
 /// before the join it could touch nothing of the other, after it it may.
 ///
-/// A sleeping body is the exception to "immovable bodies do not change": a contact may wake it
-/// within a pass (Sleeping::beforeCollide), and awake it carries impulses into every body it
-/// touches, in that very pass. So a sleeper joins the islands of its partners as a movable body
-/// does (reset's `wakeable`): what may wake it and what it may then push are one island, which
-/// settles only after a pass that changed none of it, waking included. Found in Fig. 6.7's
-/// frictional clump, where a woken box pushed a column whose island had settled, and the bits
-/// differed from the passes run for every island.
+/// A sleeping body stands in as immovable (\thesis{§4.5}), but a contact may wake it within a
+/// pass (Sleeping::beforeCollide), and awake it carries impulses into every body it touches, in
+/// that very pass. So its caller counts a sleeper among the bodies an impulse may move
+/// (OncePerStepGathering::setSleepers): what may wake it and what it may then push are one
+/// island, which settles only after a pass that changed none of it, waking included. Found in
+/// Fig. 6.7's frictional clump, where a woken box pushed a column whose island had settled, and
+/// the bits differed from the passes run for every island.
 #pragma once
 
 #include <cstddef>
@@ -53,17 +53,16 @@ enum class IslandSettling {
 class ContactIslands {
  public:
   /// One island per body (movable.size() of them), none settled; `movable[i]` false marks
-  /// body i as immovable, which join() never joins, unless `wakeable` (empty, or one flag per
-  /// body) marks it as one that may become movable within the passes (a sleeper): that joins
-  /// as a movable body does (the file comment).
-  void reset(const std::vector<char>& movable, const std::vector<char>& wakeable = {});
+  /// body i as one no impulse moves within the passes, which join() never joins (a sleeper,
+  /// which may wake, counts as movable: the file comment).
+  void reset(const std::vector<char>& movable);
   /// Joins the islands of bodies a and b (indices below the reset's size); does nothing when
-  /// either is immovable and not wakeable. The joined island is settled only if both were.
+  /// either is immovable. The joined island is settled only if both were.
   void join(int a, int b);
   /// Points every body straight at its island's root, so that the lookups of a pass (a few
   /// per contact) take one step until the next join.
   void flatten();
-  /// Whether body i is movable (or wakeable) and its island settled.
+  /// Whether body i is movable and its island settled.
   bool settled(int i) { return movable_[static_cast<std::size_t>(i)] && settled_[root(i)]; }
   /// Marks the island of body i (if movable) as changed in the current pass.
   void markChanged(int i);
@@ -87,7 +86,7 @@ class ContactIslands {
   std::size_t rootFar(std::size_t k);
   std::vector<int> parent_;
   std::vector<int> size_;
-  std::vector<char> movable_;  ///< per body: movable or wakeable
+  std::vector<char> movable_;
   std::vector<char> settled_;  ///< per root
   std::vector<char> changed_;  ///< per root
 };

@@ -148,10 +148,12 @@ void OncePerStepGathering::refreshIslands(const World& world) {
   const std::size_t n = world.bodies.size();
   if (islandSweep_ != candidates_.sweeps() || islands_.size() != n) {
     // A new sweep: the islands of its pairs and of the cached ones, every island active.
+    // A sleeper counts as movable: a contact may wake it within a pass (contact_islands.hpp).
+    const bool sleepers = sleepers_ && sleepers_->size() == n;
     movable_.resize(n);
-    for (std::size_t i = 0; i < n; ++i) movable_[i] = static_cast<char>(!world.bodies[i].immovable);
-    static const std::vector<char> none;
-    islands_.reset(movable_, sleepers_ && sleepers_->size() == n ? *sleepers_ : none);
+    for (std::size_t i = 0; i < n; ++i)
+      movable_[i] = static_cast<char>(!world.bodies[i].immovable || (sleepers && (*sleepers_)[i]));
+    islands_.reset(movable_);
     for (const PairReach& pair : slowPairs_.reaches()) islands_.join(pair.a, pair.b);
     joinedCandidates_ = 0;
     islandSweep_ = candidates_.sweeps();

@@ -117,8 +117,9 @@ class OncePerStepGathering {
   /// The islands of the step's candidate pairs, kept up to date pass by pass.
   ContactIslands& islands() { return islands_; }
   /// The bodies that stand in as immovable but may wake within a pass (one flag per body, as
-  /// Sleeping::asleep(); null: none), read whenever the islands are built: they join their
-  /// partners' islands (contact_islands.hpp). The vector must outlive the step.
+  /// Sleeping::asleep(); null: none), read whenever the islands are built: they count as
+  /// movable there and join their partners' islands (contact_islands.hpp). The vector must
+  /// outlive the step.
   void setSleepers(const std::vector<char>* asleep) { sleepers_ = asleep; }
 
   /// Builds of the cache since construction (one narrow phase of the slow pairs each).
@@ -203,7 +204,7 @@ class OncePerStepGathering {
   std::uint64_t islandSweep_ = 0;     ///< the sweep islands_ was built after
   std::size_t joinedCandidates_ = 0;  ///< candidates joined into islands_ so far
   std::vector<char> skip_;            ///< per body, this pass: its island is settled
-  std::vector<char> movable_;         ///< per body, refreshIslands(): movable
+  std::vector<char> movable_;         ///< per body, refreshIslands(): movable, or a sleeper
   const std::vector<char>* sleepers_ = nullptr;  ///< setSleepers()
   bool anySkipped_ = false;           ///< this pass: some body's island is settled
   long narrowPhases_ = 0;
