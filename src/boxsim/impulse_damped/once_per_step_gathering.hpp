@@ -26,9 +26,10 @@
 ///   (boundsWithin at the pass' poses) to that list alone. A body whose predicted bounds would
 ///   leave its swept ones (an impulse turned or sped it up) gets new ones and is tested against
 ///   the bodies near them. A fast body in no candidate pair touches nothing in the step, so it
-///   is not moved at all. The narrow phase of a pair that was apart in its last pass first looks
-///   along the axis that separated it (separatedBeyond), which decides most pairs of a flying
-///   clump with one axis instead of fifteen, and always as the full test would.
+///   is not moved at all. The narrow phase of a pair that was apart in its last test, in this
+///   step or an earlier one while it stayed a candidate, first looks along the axis that
+///   separated it (separatedBeyond), which decides most pairs of a flying clump with one axis
+///   instead of fifteen, and always as the full test would.
 /// - **A fast body's slow partners**: every slow body whose bounds come within the margin plus
 ///   its own reach in the pass of a moved fast body's moves to its predicted pose too, so the
 ///   narrow phase of the pair sees both bodies where \alg{A.2} puts them and finds the contact

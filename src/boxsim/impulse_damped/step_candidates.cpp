@@ -3,6 +3,7 @@
 #include "boxsim/impulse_damped/step_candidates.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -101,6 +102,16 @@ void StepCandidates::sweep(const World& world, const StepBodies& bodies,
   for (std::size_t i = 0; i < n; ++i)
     setSweptBounds(world, bodies, static_cast<int>(i), gravityStep, dt, stamps);
   ++sweeps_;
+  // The candidates before this sweep: a pair that is a candidate again keeps the axis of its
+  // last test. The last sweep's come first, by pair; those grow() added after them, few, are
+  // sorted apart.
+  previous_.swap(candidates_);
+  const auto byPair = [](const Candidate& x, const Candidate& y) {
+    return std::pair<int, int>(x.a, x.b) < std::pair<int, int>(y.a, y.b);
+  };
+  const std::size_t previousSwept = std::min(sweptKeys_.size(), previous_.size());
+  std::sort(previous_.begin() + static_cast<std::ptrdiff_t>(previousSwept), previous_.end(),
+            byPair);
   candidates_.clear();
   hasCandidate_.assign(n, 0);
   grownKeys_.clear();
@@ -112,12 +123,30 @@ void StepCandidates::sweep(const World& world, const StepBodies& bodies,
   // step keeps the cache, which still names its pairs.
   std::size_t k = 0;
   const auto keyOf = [&](std::size_t c) { return std::pair<int, int>(cached[c].a, cached[c].b); };
+  // Two cursors through the sorted parts of previous_: the last sweep's, then grow()'s.
+  std::array<std::size_t, 2> at{0, previousSwept};
+  const std::array<std::size_t, 2> end{previousSwept, previous_.size()};
   for (const auto& [i, j] : sweptKeys_) {
     candidates_.push_back(Candidate{i, j, SeparatingAxisResult{}, false});
     hasCandidate_[i] = hasCandidate_[j] = 1;
-    for (; k < cached.size() && keyOf(k) < std::pair<int, int>(i, j); ++k) {
+    // The axis of the pair's last test and its answer, if it was a candidate before: the
+    // one-axis check (separatedBeyond) proves a pair apart whatever pose the axis came from,
+    // so an axis from an earlier step settles a pair still apart along it as the full test
+    // would, without the test.
+    const std::pair<int, int> key(i, j);
+    for (int part = 0; part < 2; ++part) {
+      std::size_t& p = at[static_cast<std::size_t>(part)];
+      const std::size_t last = end[static_cast<std::size_t>(part)];
+      for (; p < last && std::pair<int, int>(previous_[p].a, previous_[p].b) < key; ++p) {
+      }
+      if (p < last && previous_[p].a == i && previous_[p].b == j) {
+        candidates_.back().axis = previous_[p].axis;
+        candidates_.back().apart = previous_[p].apart;
+      }
     }
-    if (k < cached.size() && keyOf(k) == std::pair<int, int>(i, j))
+    for (; k < cached.size() && keyOf(k) < key; ++k) {
+    }
+    if (k < cached.size() && keyOf(k) == key)
       candidates_.back().cached = static_cast<int>(k);
   }
 }

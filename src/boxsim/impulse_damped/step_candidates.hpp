@@ -26,8 +26,9 @@ double boundsRoundingSlack(const RigidBody& body, double halfDiagonal);
 /// The pairs that may come within the margin during a step.
 class StepCandidates {
  public:
-  /// A pair that may come within the margin during the step, with the axis that last
-  /// separated it (separatedBeyond), if any, and the answer of its last pass.
+  /// A pair that may come within the margin during the step, with the axis of its last test
+  /// (separatedBeyond) and that test's answer, kept from sweep to sweep and step to step while
+  /// the pair stays a candidate.
   struct Candidate {
     int a;                      ///< body index, a < b
     int b;                      ///< body index
@@ -119,6 +120,9 @@ class StepCandidates {
   double sweepMargin_ = 0.0;  ///< m, the margin of the sweep
   double stretch_ = 1.0;      ///< this step's stretch of the swept bounds, times kSweptStretch
   std::vector<Candidate> candidates_;
+  /// The candidates before the last sweep, by pair: where a pair that is a candidate again
+  /// finds the axis of its last test (Candidate::axis, apart).
+  std::vector<Candidate> previous_;
   std::vector<std::pair<int, int>> sweptKeys_;  ///< the sweep's pairs: candidates_ up to its size
   std::vector<std::pair<int, int>> grownKeys_;  ///< the pairs added since, sorted (empty: none)
   std::vector<Vec3> sweptLo_, sweptHi_;         ///< m, per body: its swept bounds
