@@ -3,7 +3,6 @@
 #include "boxsim/impulse_damped/step_candidates.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -106,12 +105,11 @@ void StepCandidates::sweep(const World& world, const StepBodies& bodies,
   // last test. The last sweep's come first, by pair; those grow() added after them, few, are
   // sorted apart.
   previous_.swap(candidates_);
-  const auto byPair = [](const Candidate& x, const Candidate& y) {
-    return std::pair<int, int>(x.a, x.b) < std::pair<int, int>(y.a, y.b);
-  };
   const std::size_t previousSwept = std::min(sweptKeys_.size(), previous_.size());
   std::sort(previous_.begin() + static_cast<std::ptrdiff_t>(previousSwept), previous_.end(),
-            byPair);
+            [](const Candidate& x, const Candidate& y) {
+              return std::pair<int, int>(x.a, x.b) < std::pair<int, int>(y.a, y.b);
+            });
   candidates_.clear();
   hasCandidate_.assign(n, 0);
   grownKeys_.clear();
@@ -119,35 +117,37 @@ void StepCandidates::sweep(const World& world, const StepBodies& bodies,
   index_.valid = false;
   index_.regrown.clear();
   candidatePairs(world, sweptLo_, sweptHi_, sweepMargin_, sweepAndPrune_, sweptKeys_);
-  // The cached pairs among them (both lists in increasing (a, b) order): a sweep within the
-  // step keeps the cache, which still names its pairs.
-  std::size_t k = 0;
-  const auto keyOf = [&](std::size_t c) { return std::pair<int, int>(cached[c].a, cached[c].b); };
-  // Two cursors through the sorted parts of previous_: the last sweep's, then grow()'s.
-  std::array<std::size_t, 2> at{0, previousSwept};
-  const std::array<std::size_t, 2> end{previousSwept, previous_.size()};
+  // Each new candidate finds its cached pair (a sweep within the step keeps the cache, which
+  // still names its pairs) and its remembered axis: every list is in increasing (a, b) order,
+  // as the sweep's pairs are, so one cursor each walks along.
+  const auto seek = [](std::size_t& p, std::size_t last, const auto& keyAt,
+                       const std::pair<int, int>& key) {
+    for (; p < last && keyAt(p) < key; ++p) {
+    }
+    return p < last && keyAt(p) == key;
+  };
+  const auto cachedKey = [&](std::size_t c) { return std::pair<int, int>(cached[c].a, cached[c].b); };
+  const auto previousKey = [&](std::size_t c) {
+    return std::pair<int, int>(previous_[c].a, previous_[c].b);
+  };
+  std::size_t k = 0, p = 0, g = previousSwept;
   for (const auto& [i, j] : sweptKeys_) {
-    candidates_.push_back(Candidate{i, j, SeparatingAxisResult{}, false});
-    hasCandidate_[i] = hasCandidate_[j] = 1;
-    // The axis of the pair's last test and its answer, if it was a candidate before: the
-    // one-axis check (separatedBeyond) proves a pair apart whatever pose the axis came from,
-    // so an axis from an earlier step settles a pair still apart along it as the full test
-    // would, without the test.
     const std::pair<int, int> key(i, j);
-    for (int part = 0; part < 2; ++part) {
-      std::size_t& p = at[static_cast<std::size_t>(part)];
-      const std::size_t last = end[static_cast<std::size_t>(part)];
-      for (; p < last && std::pair<int, int>(previous_[p].a, previous_[p].b) < key; ++p) {
-      }
-      if (p < last && previous_[p].a == i && previous_[p].b == j) {
-        candidates_.back().axis = previous_[p].axis;
-        candidates_.back().apart = previous_[p].apart;
-      }
+    candidates_.push_back(Candidate{i, j, SeparatingAxisResult{}, false});
+    Candidate& candidate = candidates_.back();
+    hasCandidate_[i] = hasCandidate_[j] = 1;
+    // The axis of the pair's last test and its answer, if it was a candidate before (in the
+    // last sweep's part or grow()'s): the one-axis check (separatedBeyond) proves a pair apart
+    // whatever pose the axis came from, so an axis from an earlier step settles a pair still
+    // apart along it as the full test would, without the test.
+    const Candidate* before = seek(p, previousSwept, previousKey, key)       ? &previous_[p]
+                              : seek(g, previous_.size(), previousKey, key) ? &previous_[g]
+                                                                            : nullptr;
+    if (before) {
+      candidate.axis = before->axis;
+      candidate.apart = before->apart;
     }
-    for (; k < cached.size() && keyOf(k) < key; ++k) {
-    }
-    if (k < cached.size() && keyOf(k) == key)
-      candidates_.back().cached = static_cast<int>(k);
+    if (seek(k, cached.size(), cachedKey, key)) candidate.cached = static_cast<int>(k);
   }
 }
 
