@@ -2,10 +2,16 @@
 // convergence order), the Newtonian impulse and roll-back.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
 #include <map>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include "boxsim/core/integrator.hpp"
+#include "boxsim/core/math.hpp"
 #include "boxsim/core/newtonian_impulse.hpp"
 #include "boxsim/core/pair_table.hpp"
 #include "boxsim/core/world.hpp"
@@ -264,4 +270,36 @@ TEST_CASE("A pair table holds what a map by ordered pair holds, through growth, 
   other.clear();
   CHECK(other.size() == 0);
   for (const auto& [pair, value] : reference) CHECK(other.find(pair.first, pair.second) == nullptr);
+}
+
+TEST_CASE("Numbers are written as the shortest text that reads back to the same double, appended "
+          "in place as on their own",
+          "[core][format]") {
+  const double inf = std::numeric_limits<double>::infinity();
+  const std::vector<double> values = {0.0,        -0.0,      1e-5,       0.9,    1.0 / 60.0,
+                                      -1.0 / 3.0, 1e300 / 7, 5e-324,     -2.5e-308,
+                                      123456789012345678.0,  0.1 + 0.2,  inf,    -inf};
+  std::string row = "x";
+  std::string expected = "x";
+  for (const double value : values) {
+    const std::string text = shortestText(value);
+    // Round trip: the text is the value, bit for bit (-0 keeps its sign).
+    CHECK(sameBits(std::strtod(text.c_str(), nullptr), value));
+    // No shorter text of %g digits reads back to it.
+    if (std::isfinite(value) && value != 0.0) {
+      char shorter[32];
+      for (int digits = 1; digits < 17; ++digits) {
+        std::snprintf(shorter, sizeof shorter, "%.*g", digits, value);
+        if (std::strtod(shorter, nullptr) == value) {
+          CHECK(text.size() <= std::string(shorter).size());
+          break;
+        }
+      }
+    }
+    appendShortestText(row, value);
+    row += ' ';
+    expected += text + ' ';
+  }
+  CHECK(row == expected);
+  CHECK(shortestText(std::numeric_limits<double>::quiet_NaN()).find("nan") != std::string::npos);
 }

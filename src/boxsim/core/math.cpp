@@ -10,20 +10,33 @@
 
 namespace boxsim {
 
-std::string shortestText(double value) {
-  char buffer[32];
+namespace {
+/// Writes shortestText(value) into `buffer` (32 characters are room for any double) and
+/// returns the end of the text.
+char* writeShortestText(char (&buffer)[32], double value) {
 #if defined(__cpp_lib_to_chars)
-  const std::to_chars_result r = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, r.ptr);
+  return std::to_chars(buffer, buffer + sizeof buffer, value).ptr;
 #else
   // A C++ library without std::to_chars for doubles (Emscripten's libc++, for the browser
   // demo): the fewest %g digits that read back as the same double. The same digits, though
   // large and small numbers may come in exponent form where to_chars writes them out.
   for (int digits = 1;; ++digits) {
-    std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
-    if (digits == 17 || std::strtod(buffer, nullptr) == value || std::isnan(value)) return buffer;
+    const int length = std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+    if (digits == 17 || std::strtod(buffer, nullptr) == value || std::isnan(value))
+      return buffer + length;
   }
 #endif
+}
+}  // namespace
+
+std::string shortestText(double value) {
+  char buffer[32];
+  return std::string(buffer, writeShortestText(buffer, value));
+}
+
+void appendShortestText(std::string& out, double value) {
+  char buffer[32];
+  out.append(buffer, writeShortestText(buffer, value));
 }
 
 std::array<int, 4> counterClockwiseOrder(const std::array<Eigen::Vector2d, 4>& q, int count) {

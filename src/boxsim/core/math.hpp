@@ -31,6 +31,10 @@ inline Quat axisAngleDegrees(const Vec3& axis, double angleDeg) {
 /// headers and data files: 1e-05, 0.9, 0.016666666666666666.
 std::string shortestText(double value);
 
+/// Appends shortestText(value) to `out` without a string of its own: a trajectory row writes
+/// thousands of numbers, and a text of more than 15 characters would cost an allocation each.
+void appendShortestText(std::string& out, double value);
+
 /// Whether two numbers are the same double bit for bit (so -0 differs from 0, and a NaN equals
 /// itself): the test for reusing a value computed from them. Compared as 64-bit words, which
 /// the compiler keeps inline (a memcmp of a matrix was a library call in the hot loops); copied

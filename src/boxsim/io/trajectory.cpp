@@ -17,8 +17,6 @@ namespace {
 constexpr int kFrameColumns = 7;  // t kinetic potential total contacts events bisections
 constexpr int kBodyColumns = 7;   // x y z qw qx qy qz
 
-void appendNumber(std::string& out, double value) { out += shortestText(value); }
-
 TrajectoryFormatError formatError(const std::string& path, int line, const std::string& what) {
   return TrajectoryFormatError(path + ":" + std::to_string(line) + ": " + what +
                                " (is this a trajectory written by `boxsim run`?)");
@@ -131,7 +129,7 @@ std::string formatTrajectoryHeader(const std::map<std::string, std::string>& met
     const TrajectoryBody& b = bodies[i];
     out += "# body " + std::to_string(i) + " " + b.name + " half_extents ";
     for (int k = 0; k < 3; ++k) {
-      appendNumber(out, b.halfExtents[k]);
+      appendShortestText(out, b.halfExtents[k]);
       out += ' ';
     }
     out += std::string("immovable ") + (b.immovable ? "1" : "0") + "\n";
@@ -146,7 +144,7 @@ std::string formatTrajectoryHeader(const std::map<std::string, std::string>& met
 
 void appendTrajectoryRow(std::string& out, const TrajectoryFrame& f) {
   for (double value : {f.t, f.kinetic, f.potential, f.kinetic + f.potential}) {
-    appendNumber(out, value);
+    appendShortestText(out, value);
     out += ' ';
   }
   out += std::to_string(f.contacts) + ' ' + std::to_string(f.events) + ' ' +
@@ -155,7 +153,7 @@ void appendTrajectoryRow(std::string& out, const TrajectoryFrame& f) {
     for (double value : {f.x[i].x(), f.x[i].y(), f.x[i].z(), f.q[i].w(), f.q[i].x(), f.q[i].y(),
                          f.q[i].z()}) {
       out += ' ';
-      appendNumber(out, value);
+      appendShortestText(out, value);
     }
   }
   out += '\n';
