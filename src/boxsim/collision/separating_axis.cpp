@@ -377,14 +377,21 @@ bool separatedBeyond(const Obb& a, const Obb& b, const SeparatingAxisResult& axi
 
 double depthAfterTranslationAtLeast(const Obb& a, const Obb& b, const SeparatingAxisResult& result,
                                     double translation, const SeparatingAxisParams& params) {
-  if (!(result.depth > 0.0) || !std::isfinite(result.depth) || !(translation >= 0.0))
-    return -std::numeric_limits<double>::infinity();
-  const Vec3& ea = a.halfExtents;
-  const Vec3& eb = b.halfExtents;
-  const double tieWidth = faceTieWidth(a, b, params);
-  const double scale = 1.0 + a.center.cwiseAbs().maxCoeff() + b.center.cwiseAbs().maxCoeff() +
-                       ea.sum() + eb.sum() + translation;
-  return result.depth * (1.0 - params.edgeBias) - tieWidth - translation - 1e-9 * scale;
+  return DepthAfterTranslation(a, b, result, params).atLeast(translation);
+}
+
+DepthAfterTranslation::DepthAfterTranslation(const Obb& a, const Obb& b,
+                                             const SeparatingAxisResult& result,
+                                             const SeparatingAxisParams& params)
+    : claim_(result.depth > 0.0 && std::isfinite(result.depth)),
+      reduced_(result.depth * (1.0 - params.edgeBias) - faceTieWidth(a, b, params)),
+      scaleBase_(1.0 + a.center.cwiseAbs().maxCoeff() + b.center.cwiseAbs().maxCoeff() +
+                 a.halfExtents.sum() + b.halfExtents.sum()) {}
+
+double DepthAfterTranslation::atLeast(double translation) const {
+  if (!claim_ || !(translation >= 0.0)) return -std::numeric_limits<double>::infinity();
+  // The coordinates' rounding, relative 1e-9 of their scale, the translation's included.
+  return reduced_ - translation - 1e-9 * (scaleBase_ + translation);
 }
 
 }  // namespace boxsim

@@ -95,4 +95,22 @@ bool separatedBeyond(const Obb& a, const Obb& b, const SeparatingAxisResult& axi
 double depthAfterTranslationAtLeast(const Obb& a, const Obb& b, const SeparatingAxisResult& result,
                                     double translation, const SeparatingAxisParams& params = {});
 
+/// depthAfterTranslationAtLeast of one pair for many translations: what does not depend on the
+/// translation is worked out once, and atLeast(t) gives depthAfterTranslationAtLeast(a, b,
+/// result, t, params) bit for bit (the same operations in the same order). FIXCONTACTCONSTRAINTS
+/// asks it after every nudge of a box.
+class DepthAfterTranslation {
+ public:
+  /// The bound for boxes a and b, `result` being separatingAxisTest(a, b, params).
+  DepthAfterTranslation(const Obb& a, const Obb& b, const SeparatingAxisResult& result,
+                        const SeparatingAxisParams& params = {});
+  /// The lower bound (m) after a translation of length at most `translation` (m).
+  double atLeast(double translation) const;
+
+ private:
+  bool claim_;        ///< result.depth > 0 and finite: there is a bound to give
+  double reduced_;    ///< m, result.depth (1 - edgeBias) - tie width
+  double scaleBase_;  ///< m, 1 + the largest |centre coordinate| of a and of b + all half extents
+};
+
 }  // namespace boxsim

@@ -80,6 +80,7 @@ int fixContactConstraints(World& world, double margin, const FixContactParams& p
       // deeper than the slop (depthAfterTranslationAtLeast, 1.01 for |offset| = 1 up to
       // rounding): those tests are left out, the nudges are the same additions, and the
       // loop stops where FIXCONTACTCONSTRAINTS L6-L7 would.
+      const DepthAfterTranslation after(box, stable, sat);
       int k = 0;
       do {
         if (share) {
@@ -91,7 +92,7 @@ int fixContactConstraints(World& world, double margin, const FixContactParams& p
         ++nudges;
         ++n;
         ++k;
-      } while (n < limit && depthAfterTranslationAtLeast(box, stable, sat, 1.01 * step * k) > slop);
+      } while (n < limit && after.atLeast(1.01 * step * k) > slop);
     }
   }
   return nudges;
