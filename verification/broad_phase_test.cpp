@@ -314,7 +314,7 @@ TEST_CASE("separatedBeyond says 'apart' only when the full separating-axis test 
   CHECK(shortcut > apart);
 }
 
-TEST_CASE("depthAfterTranslationAtLeast bounds the separating-axis depth after a translation",
+TEST_CASE("DepthAfterTranslation bounds the separating-axis depth after a translation",
           "[collision][sat]") {
   // Random overlapping box pairs, B moved by a random translation up to 0.3 m: the full test's
   // depth afterwards is never below the bound, whichever axis (face or edge) either test picks;
@@ -330,7 +330,7 @@ TEST_CASE("depthAfterTranslationAtLeast bounds the separating-axis depth after a
     Obb b{random.vector(-1.0, 1.0), rb, random.vector(0.05, 1.0)};
     const SeparatingAxisResult before = separatingAxisTest(a, b);
     const Vec3 t = random.vector(-1.0, 1.0).normalized() * random.uniform(0.0, 0.3);
-    const double bound = depthAfterTranslationAtLeast(a, b, before, t.norm());
+    const double bound = DepthAfterTranslation(a, b, before).atLeast(t.norm());
     if (!(before.depth > 0.0)) {
       CHECK(bound == -std::numeric_limits<double>::infinity());
       continue;
@@ -346,7 +346,7 @@ TEST_CASE("depthAfterTranslationAtLeast bounds the separating-axis depth after a
   const Obb box{Vec3(0.0, 0.8, 0.0), Mat3::Identity(), Vec3::Constant(0.5)};
   const SeparatingAxisResult sat = separatingAxisTest(ground, box);
   REQUIRE(sat.depth == Approx(0.2));
-  CHECK(depthAfterTranslationAtLeast(ground, box, sat, 0.01) > 0.17);
+  CHECK(DepthAfterTranslation(ground, box, sat).atLeast(0.01) > 0.17);
 }
 
 TEST_CASE("Sweep and prune matches all pairs when a body's state is not finite",

@@ -375,11 +375,6 @@ bool separatedBeyond(const Obb& a, const Obb& b, const SeparatingAxisResult& axi
   return apart;
 }
 
-double depthAfterTranslationAtLeast(const Obb& a, const Obb& b, const SeparatingAxisResult& result,
-                                    double translation, const SeparatingAxisParams& params) {
-  return DepthAfterTranslation(a, b, result, params).atLeast(translation);
-}
-
 DepthAfterTranslation::DepthAfterTranslation(const Obb& a, const Obb& b,
                                              const SeparatingAxisResult& result,
                                              const SeparatingAxisParams& params)

@@ -80,9 +80,11 @@ bool separatedBeyond(const Obb& a, const Obb& b, const SeparatingAxisResult& axi
                      const SeparatingAxisParams& params = {}, double* depth = nullptr);
 
 /// A lower bound (m) of separatingAxisTest(a', b', params).depth for boxes a' and b' that are a
-/// and b moved apart or together by a translation of length at most `translation` (m), their
-/// axes and extents unchanged, given `result` = separatingAxisTest(a, b, params); -infinity
-/// when result.depth <= 0 or is not finite (no claim).
+/// and b moved apart or together by a translation of length at most t (m), their axes and
+/// extents unchanged, given `result` = separatingAxisTest(a, b, params): atLeast(t); -infinity
+/// when result.depth <= 0 or is not finite (no claim), or t is not >= 0. What does not depend
+/// on t is worked out once, at construction: FIXCONTACTCONSTRAINTS asks after every nudge of a
+/// box, to nudge it many times between two tests.
 ///
 /// Why it holds: along each tested axis (unit, or an edge axis divided by its length) the
 /// depth is a constant minus |axis . (c_b - c_a)|, so a translation changes it by at most its
@@ -91,14 +93,6 @@ bool separatedBeyond(const Obb& a, const Obb& b, const SeparatingAxisResult& axi
 /// the face tie width (a face is kept unless an edge beats it by both), so every tested axis
 /// has depth >= depth (1 - edgeBias) - tie width, and so has every axis after the translation
 /// less its length; a relative 1e-9 of the coordinates covers the rounding of either test.
-/// FIXCONTACTCONSTRAINTS uses it to nudge a box many times between two tests.
-double depthAfterTranslationAtLeast(const Obb& a, const Obb& b, const SeparatingAxisResult& result,
-                                    double translation, const SeparatingAxisParams& params = {});
-
-/// depthAfterTranslationAtLeast of one pair for many translations: what does not depend on the
-/// translation is worked out once, and atLeast(t) gives depthAfterTranslationAtLeast(a, b,
-/// result, t, params) bit for bit (the same operations in the same order). FIXCONTACTCONSTRAINTS
-/// asks it after every nudge of a box.
 class DepthAfterTranslation {
  public:
   /// The bound for boxes a and b, `result` being separatingAxisTest(a, b, params).

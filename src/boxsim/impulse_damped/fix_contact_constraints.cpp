@@ -77,7 +77,7 @@ int fixContactConstraints(World& world, double margin, const FixContactParams& p
                          : kept->axis(lower, stable, upper, box);
       if (sat.depth <= slop) break;
       // One nudge, then more while the test before each is certain to find the pair still
-      // deeper than the slop (depthAfterTranslationAtLeast, 1.01 for |offset| = 1 up to
+      // deeper than the slop (DepthAfterTranslation, 1.01 for |offset| = 1 up to
       // rounding): those tests are left out, the nudges are the same additions, and the
       // loop stops where FIXCONTACTCONSTRAINTS L6-L7 would.
       const DepthAfterTranslation after(box, stable, sat);
