@@ -516,9 +516,13 @@ PatchOutline patchOutline(const ContactManifold& m, const Vec3& centre) {
 }
 
 double contactPatchRadius(const ContactManifold& m) {
+  if (m.kind == AxisKind::EdgeEdge || m.count < 3) return contactPatchRadius(m, PatchOutline{});
+  return contactPatchRadius(m, patchOutline(m, m.centroid()));
+}
+
+double contactPatchRadius(const ContactManifold& m, const PatchOutline& outline) {
   if (m.kind == AxisKind::EdgeEdge || m.count < 2) return 0.0;
   if (m.count == 2) return 0.25 * (m.points[1].position - m.points[0].position).norm();
-  const PatchOutline outline = patchOutline(m, m.centroid());
   const std::array<Eigen::Vector2d, 4>& p = outline.points;
   const std::array<int, 4>& order = outline.order;
   double integral = 0.0, area = 0.0;

@@ -83,5 +83,9 @@ PatchOutline patchOutline(const ContactManifold& m, const Vec3& centre);
 /// 1 point, or an edge–edge manifold, give 0. A square of side s gives
 /// s (√2 + ln(1 + √2)) / 6 ≈ 0.3826 s.
 double contactPatchRadius(const ContactManifold& m);
+/// contactPatchRadius(m) from m's outline about its centroid (`outline` =
+/// patchOutline(m, m.centroid())), for a caller that has the outline already: the same
+/// operations, so the same bits.
+double contactPatchRadius(const ContactManifold& m, const PatchOutline& outline);
 
 }  // namespace boxsim

@@ -91,7 +91,7 @@ ImpulseContact ContactNormalTracker::contactOf(const World& world, const Contact
       c.patch.offsets[c.patch.count] = m.points[i].position - p;
       c.patch.pointOf[c.patch.count] = i;
     }
-    c.patch.radius = contactPatchRadius(m);
+    c.patch.radius = contactPatchRadius(m, outline);
   }
   switch (model_) {
     case ContactNormalModel::SeparatingAxis:
