@@ -22,6 +22,15 @@ install(TARGETS boxsim_core boxsim_collision boxsim_techniques boxsim_io boxsim_
 install(TARGETS boxsim RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(EXPORT boxsimTargets NAMESPACE boxsim:: DESTINATION ${BOXSIM_CMAKE_PACKAGE_DIR})
 
+# The techniques link OpenMP where it was found (src/CMakeLists.txt): a program linking them
+# needs its runtime too.
+if(BOXSIM_HAVE_OPENMP)
+  set(BOXSIM_FIND_OPENMP "find_dependency(OpenMP COMPONENTS CXX)")
+  set(BOXSIM_PC_OPENMP " -fopenmp")
+else()
+  set(BOXSIM_FIND_OPENMP "")
+  set(BOXSIM_PC_OPENMP "")
+endif()
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/boxsimConfig.cmake.in
                               ${PROJECT_BINARY_DIR}/boxsimConfig.cmake
                               INSTALL_DESTINATION ${BOXSIM_CMAKE_PACKAGE_DIR})

@@ -17,6 +17,7 @@
 #include "boxsim/collision/broad_phase.hpp"
 #include "boxsim/impulse_damped/contact_islands.hpp"
 #include "boxsim/impulse_damped/damped_integration.hpp"
+#include "boxsim/impulse_damped/impulse_stepper.hpp"
 #include "boxsim/io/scene_builders.hpp"
 #include "boxsim/techniques.hpp"
 #include "boxsim/timewarp/timewarp.hpp"
@@ -377,4 +378,55 @@ TEST_CASE("Worlds stepped on separate threads at the same time give the same bit
     INFO(methods[m]);
     CHECK(sameBits(together[m], alone[m]));
   }
+}
+
+TEST_CASE("Impulse and damped give the same bits on any number of threads: COLLIDE's contacts "
+          "run in dependency levels of A.2's own order",
+          "[impulse_damped][determinism][threads]") {
+  // The resting pyramid hit by a die (its cubes fall asleep, and the die wakes them: passes with
+  // a sleeper beside an awake body run in order), the fast clump, and the clump with Coulomb
+  // friction beside a far pyramid. Every pass with two contacts or more is shared among the
+  // threads (parallelContacts 0), so the levels carry nearly every pass.
+  const World frictional = frictionalClump();
+  const int steps = static_cast<int>(std::max(40L, testing::scaledCount(120)));
+  for (const World& start : {manyContacts(), fastClump(), frictional}) {
+    std::vector<double> damped[4], impulse[4];
+    long levelPasses[4] = {0, 0, 0, 0};
+    const int threadCounts[4] = {1, 2, 3, 8};
+    for (int t = 0; t < 4; ++t) {
+      DampedIntegrationParams params;
+      params.impulse.threads = threadCounts[t];
+      params.impulse.parallelContacts = 0;
+      DampedIntegrationStepper stepper(params);
+      ImpulseStepperParams plainParams;
+      plainParams.impulse.threads = threadCounts[t];
+      plainParams.impulse.parallelContacts = 0;
+      ImpulseStepper plain(plainParams);
+      World world = start, plainWorld = start;
+      for (int k = 0; k < steps; ++k) {
+        stepper.step(world, 1.0 / 60.0);
+        appendStates(world, damped[t]);
+        plain.step(plainWorld, 1.0 / 60.0);
+        appendStates(plainWorld, impulse[t]);
+      }
+      levelPasses[t] = stepper.gathering().levelPasses();
+    }
+    CHECK(levelPasses[0] == 0);  // one thread: the loop in order
+    for (int t = 1; t < 4; ++t) {
+      CHECK(sameBits(damped[0], damped[t]));
+      CHECK(sameBits(impulse[0], impulse[t]));
+      // The same passes in levels for any number of threads above one, and most of them.
+      CHECK(levelPasses[t] == levelPasses[1]);
+    }
+    CHECK(levelPasses[1] > 0);
+  }
+}
+
+TEST_CASE("Threads must be at least one", "[impulse_damped][threads]") {
+  DampedIntegrationParams params;
+  params.impulse.threads = 0;
+  CHECK_THROWS_WITH(DampedIntegrationStepper(params), Catch::Contains("threads must be >= 1"));
+  ImpulseStepperParams plain;
+  plain.impulse.threads = 0;
+  CHECK_THROWS_WITH(ImpulseStepper(plain), Catch::Contains("threads must be >= 1"));
 }

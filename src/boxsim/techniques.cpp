@@ -23,6 +23,7 @@ void refuseOptions(const std::string& method, const TechniqueOptions& options,
       {!takesGeometricStability && options.geometricStability.has_value(), "geometric stability"},
       {!takesImpulseOptions && options.contactNormal.has_value(), "contact normal"},
       {!takesImpulseOptions && options.contactGathering.has_value(), "contact gathering"},
+      {!takesImpulseOptions && options.threads.has_value(), "threads"},
       {options.sleep.has_value(), "sleep"},
       {options.chatterDetection.has_value(), "chatter detection"},
       {options.continuousCollision.has_value(), "continuous collision"},
@@ -76,6 +77,7 @@ std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueO
     ImpulseStepperParams params;
     if (options.contactNormal) params.impulse.normalModel = *options.contactNormal;
     if (options.contactGathering) params.impulse.gathering = *options.contactGathering;
+    if (options.threads) params.impulse.threads = *options.threads;
     if (options.integrator) params.impulse.integrator = *options.integrator;
     return std::make_unique<ImpulseStepper>(params);
   }
@@ -83,6 +85,7 @@ std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueO
     DampedIntegrationParams params;
     if (options.contactNormal) params.impulse.normalModel = *options.contactNormal;
     if (options.contactGathering) params.impulse.gathering = *options.contactGathering;
+    if (options.threads) params.impulse.threads = *options.threads;
     applyGeometricStability(options, params.useGeometricStability, params.geometricStability);
     if (options.sleep) params.sleep.enabled = *options.sleep;
     if (options.chatterDetection) params.sleep.chatterDetection = *options.chatterDetection;

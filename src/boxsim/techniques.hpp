@@ -40,6 +40,9 @@ struct TechniqueOptions {
   /// Visual plausibility (\thesis{§4.2}) of damped integration: perturbation on with this seed;
   /// empty: off.
   std::optional<unsigned long> plausibilitySeed;
+  /// Threads of COLLIDE's loop of the impulse-based techniques (ImpulseParams::threads, >= 1;
+  /// the same trajectory for any number); empty: default (1).
+  std::optional<int> threads;
 };
 
 /// The method names, in the order the thesis introduces them.

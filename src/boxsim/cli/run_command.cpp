@@ -33,6 +33,7 @@ struct RunArgs {
   std::string continuousCollision;  // "on", "off" or empty (the method's default)
   std::string broadPhase;     // empty: the scene's choice
   std::optional<unsigned long> plausibilitySeed;
+  std::optional<int> threads;  // empty: the method's default (1)
   double dt = 1.0 / 60.0;
   double duration = 5.0;
   std::string out;            // empty: <scene stem>.dat in the working directory
@@ -92,6 +93,7 @@ TechniqueOptions techniqueOptions(const RunArgs& args) {
   if (!args.continuousCollision.empty())
     options.continuousCollision = args.continuousCollision == "on";
   options.plausibilitySeed = args.plausibilitySeed;
+  options.threads = args.threads;
   return options;
 }
 
@@ -206,6 +208,11 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("--plausibility-seed", args->plausibilitySeed,
                   "Turn on the random perturbation of fast collisions (damped, thesis §4.2) "
                   "with this seed; the seed is written into the output header");
+  cmd->add_option("--threads", args->threads,
+                  "Threads of COLLIDE's loop (impulse, damped; default 1): the contacts of a "
+                  "pass run in dependency levels of the thesis' own order, so the trajectory is "
+                  "the same bit for bit for any number; written into the output header")
+      ->check(CLI::Range(1, 1024));
   cmd->add_option("--dt", args->dt, "Time step, s")
       ->default_str(shortestText(args->dt))
       ->check(finiteNumber(0.0, false, "s"));

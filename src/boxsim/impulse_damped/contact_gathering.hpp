@@ -37,6 +37,7 @@
 #include <vector>
 
 #include "boxsim/collision/contact.hpp"
+#include "boxsim/core/newtonian_impulse.hpp"
 #include "boxsim/core/world.hpp"
 #include "boxsim/impulse_damped/contact_islands.hpp"
 #include "boxsim/impulse_damped/contact_normal.hpp"
@@ -45,6 +46,20 @@
 #include "boxsim/impulse_damped/predicted_positions.hpp"
 
 namespace boxsim {
+
+/// The working lists of COLLIDE's loop in dependency levels (impulse_pass.hpp, "Threads"),
+/// kept from pass to pass for their room.
+struct CollideLevels {
+  std::vector<int> lastLevel;     ///< per body: one more than its last contact's level
+  std::vector<int> level;         ///< per contact: its level
+  std::vector<int> body;          ///< per contact: its movable body (the island's)
+  std::vector<int> start;         ///< contacts of level l are byLevel[start[l], start[l + 1])
+  std::vector<int> next;          ///< the counting sort's fill cursors
+  std::vector<int> byLevel;       ///< contact indices by level
+  std::vector<FrictionSum*> sums;  ///< per contact: its pair's friction sums, or null
+  std::vector<double> impulse;    ///< per contact: COLLIDE's impulse, N s
+  std::vector<char> changed;      ///< per contact: whether COLLIDE changed anything
+};
 
 /// gatherCollisions at predicted positions, pass after pass, in either mode of the file
 /// comment. It owns the contact-normal model (\thesis{§3.3.2}), whose memory of closest faces
@@ -93,7 +108,22 @@ class ContactGathering {
 
   /// OncePerStep: the sleepers, which join their partners' islands
   /// (OncePerStepGathering::setSleepers); nothing under EveryPass.
-  void setSleepers(const std::vector<char>* asleep) { once_.setSleepers(asleep); }
+  void setSleepers(const std::vector<char>* asleep) {
+    sleepers_ = asleep;
+    once_.setSleepers(asleep);
+  }
+  /// The sleepers given to setSleepers (one flag per body), or null.
+  const std::vector<char>* sleepers() const { return sleepers_; }
+  /// ImpulseParams::threads of the parameters this gathering was made with.
+  int threads() const { return params_.threads; }
+  /// ImpulseParams::parallelContacts of those parameters.
+  int parallelContacts() const { return params_.parallelContacts; }
+  /// The working lists of COLLIDE's loop in dependency levels, kept with the gathering.
+  CollideLevels& collideLevels() { return collideLevels_; }
+  /// Counts a pass whose COLLIDE ran in dependency levels (levelPasses()).
+  void countLevelPass() { ++levelPasses_; }
+  /// Passes since construction whose COLLIDE ran in dependency levels on several threads.
+  long levelPasses() const { return levelPasses_; }
 
   /// The normal model and its memory, for contacts gathered outside the passes.
   ContactNormalTracker& normals() { return normals_; }
@@ -117,6 +147,9 @@ class ContactGathering {
 
  private:
   ImpulseParams params_;
+  const std::vector<char>* sleepers_ = nullptr;  ///< setSleepers()
+  CollideLevels collideLevels_;                  ///< collideLevels()
+  long levelPasses_ = 0;                         ///< levelPasses()
   ContactNormalTracker normals_;
   std::vector<ImpulseContact> contacts_;
   OncePerStepGathering once_;

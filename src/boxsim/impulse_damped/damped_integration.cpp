@@ -18,6 +18,8 @@ DampedIntegrationStepper::DampedIntegrationStepper(const DampedIntegrationParams
     : params_(params), gathering_(params.impulse), plausibility_(params.plausibility) {
   if (params.impulse.collisionIterations < 1 || params.impulse.contactIterations < 1)
     throw std::invalid_argument("damped: collision and contact iterations must be >= 1");
+  if (params.impulse.threads < 1)
+    throw std::invalid_argument("damped: threads must be >= 1 (1: no second thread)");
   if (params.continuousCollision.maxSubsteps < 1 ||
       !(params.continuousCollision.fastReach > 0.0))
     throw std::invalid_argument(

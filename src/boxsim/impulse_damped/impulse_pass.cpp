@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 
 #include "boxsim/collision/broad_phase.hpp"
@@ -56,20 +57,21 @@ struct SumBits {
 /// point found by COLLIDE L7, ContactNormalTracker::contactOf); returns j.
 double impulseWithGravity(RigidBody& a, RigidBody& b, const ImpulseContact& contact,
                           double restitution, const Vec3& deltaV, FrictionTotals* totals,
-                          bool restarted, bool supportA, bool supportB) {
+                          bool restarted, bool supportA, bool supportB, FrictionSum* sum) {
   addVelocity(a, deltaV);
   addVelocity(b, deltaV);
-  return contactImpulse(a, b, contact, restitution, totals, restarted, supportA, supportB);
+  return contactImpulse(a, b, contact, restitution, totals, restarted, supportA, supportB, sum);
 }
 }  // namespace
 
 double contactImpulse(RigidBody& a, RigidBody& b, const ImpulseContact& contact, double restitution,
-                      FrictionTotals* totals, bool restarted, bool supportA, bool supportB) {
+                      FrictionTotals* totals, bool restarted, bool supportA, bool supportB,
+                      FrictionSum* given) {
   if (contact.friction.frictionless())
     return applyNewtonianImpulse(a, b, contact.ra, contact.rb, contact.normal, restitution,
                                  supportA, supportB);
   FrictionSum alone;
-  FrictionSum& sum = totals ? totals->at(contact.a, contact.b) : alone;
+  FrictionSum& sum = given ? *given : totals ? totals->at(contact.a, contact.b) : alone;
   // Friction first, on the budget of the passes before, so that the normal impulse, which
   // keeps the bodies apart, has the last word (Catto 2005 orders them so too).
   // A restarted contact's tipping is taken away by COLLIDE L11-L14 itself: no couple for it.
@@ -113,7 +115,8 @@ double contactImpulse(RigidBody& a, RigidBody& b, const ImpulseContact& contact,
 }
 
 double collide(World& world, const ImpulseContact& contact, double restitution, GravityMode gravity,
-               double dt, const std::vector<char>& stable, FrictionTotals* totals) {
+               double dt, const std::vector<char>& stable, FrictionTotals* totals,
+               FrictionSum* sum) {
   RigidBody& a = world.bodies[contact.a];
   RigidBody& b = world.bodies[contact.b];
   // COLLIDE L1-L8: the gravity trick, so a resting contact sees the velocity gravity is about to
@@ -133,7 +136,7 @@ double collide(World& world, const ImpulseContact& contact, double restitution, 
     supportB = stableB && !a.immovable && up < 0.0;
   }
   const double j = impulseWithGravity(a, b, contact, restitution, deltaV, totals,
-                                      stableA || stableB, supportA, supportB);
+                                      stableA || stableB, supportA, supportB, sum);
   // COLLIDE L9-L10.
   addVelocity(a, -deltaV);
   addVelocity(b, -deltaV);
@@ -163,8 +166,126 @@ double collideImpulse(const World& world, const ImpulseContact& contact, double 
   RigidBody a = world.bodies[contact.a];
   RigidBody b = world.bodies[contact.b];
   return impulseWithGravity(a, b, contact, restitution, gravityVelocity(world, gravity, dt), nullptr,
-                            false, false, false);
+                            false, false, false, nullptr);
 }
+
+/// An OpenMP pragma where the build has OpenMP (-fopenmp), nothing elsewhere (the WebAssembly
+/// build): the loop then runs on one thread, with the same result.
+#if defined(_OPENMP)
+#define BOXSIM_OMP(directive) _Pragma(#directive)
+#else
+#define BOXSIM_OMP(directive)
+#endif
+
+namespace {
+
+/// Whether COLLIDE's loop of a pass may run in dependency levels on several threads (the
+/// conditions of impulsePass' "Threads").
+bool levelsApply(const World& world, const std::vector<ImpulseContact>& contacts,
+                 const ContactGathering& gathering, const BeforeCollide& beforeCollide) {
+  if (gathering.threads() < 2 || contacts.size() < 2) return false;
+  if (!beforeCollide) return true;
+  const std::vector<char>* asleep = gathering.sleepers();
+  if (!asleep || asleep->size() != world.bodies.size()) return false;
+  for (const ImpulseContact& c : contacts)
+    if ((*asleep)[c.a] != (*asleep)[c.b]) return false;
+  return true;
+}
+
+/// A frictional contact's COLLIDE costs about this many frictionless ones (applyPatchFriction's
+/// five rows), for the work per level that ImpulseParams::parallelContacts asks for.
+constexpr int kFrictionalWork = 4;
+
+/// The dependency levels of the pass' contacts into w.level, w.body, w.start and w.byLevel (the
+/// contacts of level l are w.byLevel[w.start[l], w.start[l + 1]), in their order); returns
+/// whether the work per level, in frictionless contacts (kFrictionalWork), reaches
+/// `parallelContacts`.
+bool findLevels(const World& world, const std::vector<ImpulseContact>& contacts,
+                int parallelContacts, CollideLevels& w) {
+  const std::size_t n = world.bodies.size(), m = contacts.size();
+  // Each contact's level: one more than the deepest level of the contacts before it on either
+  // of its movable bodies. No contact of the pass wakes a sleeper (levelsApply), so the bodies
+  // immovable now stay so, and only read, through the pass.
+  w.lastLevel.assign(n, 0);
+  w.level.resize(m);
+  w.body.resize(m);
+  int levels = 0;
+  long work = 0;
+  for (std::size_t k = 0; k < m; ++k) {
+    const ImpulseContact& c = contacts[k];
+    work += c.friction.frictionless() ? 1 : kFrictionalWork;
+    const bool movableA = !world.bodies[c.a].immovable, movableB = !world.bodies[c.b].immovable;
+    int level = 0;
+    if (movableA) level = std::max(level, w.lastLevel[c.a]);
+    if (movableB) level = std::max(level, w.lastLevel[c.b]);
+    if (movableA) w.lastLevel[c.a] = level + 1;
+    if (movableB) w.lastLevel[c.b] = level + 1;
+    w.level[k] = level;
+    levels = std::max(levels, level + 1);
+    // The island is the movable body's, as the loop in order reads it before COLLIDE.
+    w.body[k] = movableA ? c.a : c.b;
+  }
+  // A counting sort by level; contacts keep their order within a level.
+  w.start.assign(static_cast<std::size_t>(levels) + 1, 0);
+  for (std::size_t k = 0; k < m; ++k) ++w.start[static_cast<std::size_t>(w.level[k]) + 1];
+  for (int l = 0; l < levels; ++l) w.start[l + 1] += w.start[l];
+  w.next.assign(w.start.begin(), w.start.end() - 1);
+  w.byLevel.resize(m);
+  for (std::size_t k = 0; k < m; ++k) w.byLevel[w.next[w.level[k]]++] = static_cast<int>(k);
+  return work >= static_cast<long>(parallelContacts) * levels;
+}
+
+/// COLLIDE's loop of impulsePass in dependency levels (its "Threads"), the levels found by
+/// findLevels: the same PassResult, world, sums, islands and `touched` flags as the loop in
+/// order, bit for bit. The working lists are the caller's, kept from pass to pass.
+void collideInLevels(World& world, std::vector<ImpulseContact>& contacts, const CollideCall& call,
+                     const std::vector<char>& stable, std::vector<char>* touched,
+                     const BeforeCollide& beforeCollide, FrictionTotals* totals,
+                     ContactIslands* islands, IslandSettling settling, int threads,
+                     CollideLevels& w, PassResult& result) {
+  const std::size_t m = contacts.size();
+  const int levels = static_cast<int>(w.start.size()) - 1;
+  // The pairs' friction sums inserted first, then their addresses taken (an insertion may move
+  // the values): the threads only look at their own pair's sums.
+  w.sums.assign(m, nullptr);
+  if (totals) {
+    for (const ImpulseContact& c : contacts)
+      if (!c.friction.frictionless()) totals->at(c.a, c.b);
+    for (std::size_t k = 0; k < m; ++k)
+      if (!contacts[k].friction.frictionless())
+        w.sums[k] = &totals->at(contacts[k].a, contacts[k].b);
+  }
+  if (touched)
+    for (const ImpulseContact& c : contacts) (*touched)[c.a] = (*touched)[c.b] = 1;
+  w.impulse.assign(m, 0.0);
+  w.changed.assign(m, 0);
+  BOXSIM_OMP(omp parallel num_threads(threads))
+  for (int l = 0; l < levels; ++l) {
+    // The contacts of a level share no movable body: in any order, the same bits.
+    BOXSIM_OMP(omp for schedule(static))
+    for (int p = w.start[l]; p < w.start[l + 1]; ++p) {
+      const std::size_t k = static_cast<std::size_t>(w.byLevel[p]);
+      ImpulseContact& c = contacts[k];
+      const BodyMomenta beforeA(world.bodies[c.a]), beforeB(world.bodies[c.b]);
+      const SumBits sumBefore = w.sums[k] ? SumBits(*w.sums[k]) : SumBits();
+      if (beforeCollide) beforeCollide(world, c, call);
+      w.impulse[k] =
+          collide(world, c, call.restitution, call.gravity, call.dt, stable, totals, w.sums[k]);
+      w.changed[k] = static_cast<char>(!beforeA.same(world.bodies[c.a]) ||
+                                       !beforeB.same(world.bodies[c.b]) ||
+                                       (w.sums[k] && !sumBefore.same(*w.sums[k])));
+    }
+  }
+  // What the loop in order counts and marks, in its order.
+  for (std::size_t k = 0; k < m; ++k) {
+    if (w.impulse[k] > 0.0) ++result.impulses;
+    result.changed = result.changed || w.changed[k];
+    if (islands && (w.changed[k] || (settling == IslandSettling::Unapproached && w.impulse[k] > 0.0)))
+      islands->markChanged(w.body[k]);
+  }
+}
+
+}  // namespace
 
 PassResult impulsePass(World& world, double dt, double restitution, GravityMode predict,
                        GravityMode impulseGravity, double margin, ContactGathering& gathering,
@@ -185,6 +306,15 @@ PassResult impulsePass(World& world, double dt, double restitution, GravityMode 
   if (totals) totals->shareWeights(world, contacts, dt);
   // The pass' contacts are those of the islands still active (contact_islands.hpp).
   ContactIslands* islands = settling == IslandSettling::Never ? nullptr : gathering.islands();
+  if (levelsApply(world, contacts, gathering, beforeCollide) &&
+      findLevels(world, contacts, gathering.parallelContacts(), gathering.collideLevels())) {
+    gathering.countLevelPass();
+    collideInLevels(world, contacts, call, stable, touched, beforeCollide, totals, islands,
+                    settling, gathering.threads(), gathering.collideLevels(), result);
+    if (islands) result.settled = islands->settleUnchanged();
+    gathering.end(world);
+    return result;
+  }
   for (ImpulseContact& c : contacts) {
     // The island of the contact's movable body (a movable body's island holds both).
     const int body = world.bodies[c.a].immovable ? c.b : c.a;
@@ -238,7 +368,8 @@ std::map<std::string, std::string> impulseParameters(const ImpulseParams& params
           {"exact_reach_per_l", shortestText(params.exactReach)},
           {"pair_reach", params.pairReach ? "on" : "off"},
           {"common_lever_point", params.commonLeverPoint ? "on" : "off"},
-          {"integrator", integratorName(params.integrator)}};
+          {"integrator", integratorName(params.integrator)},
+          {"threads", std::to_string(params.threads)}};
 }
 
 double smallestHalfExtent(const World& world) {

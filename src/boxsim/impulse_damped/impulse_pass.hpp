@@ -29,11 +29,12 @@ namespace boxsim {
 /// also has at least its part of the load of the body it carries (FrictionTotals::supportShare,
 /// from the pass' FrictionTotals::shareWeights).
 /// `supportA` / `supportB` mark a geometrically stable body under the other, which carries it
-/// (applyNewtonianImpulse with supports).
+/// (applyNewtonianImpulse with supports). `sum`, when given, is the pair's entry of `totals`
+/// (totals->at(contact.a, contact.b)) looked up by the caller: COLLIDE's threads must not insert.
 /// \return the normal impulse, N s.
 double contactImpulse(RigidBody& a, RigidBody& b, const ImpulseContact& contact, double restitution,
                       FrictionTotals* totals, bool restarted = false, bool supportA = false,
-                      bool supportB = false);
+                      bool supportB = false, FrictionSum* sum = nullptr);
 
 /// COLLIDE L6 and L10 for one body: `deltaV` (m/s) added to its velocity, unless immovable.
 void addVelocity(RigidBody& body, const Vec3& deltaV);
@@ -49,9 +50,10 @@ void holdGeometricallyStable(RigidBody& body);
 /// tipping angular momentum (\alg{COLLIDE L11-L14}). `stable` is empty or has one flag per body.
 /// \return the impulse magnitude applied, N s (0 when the bodies separate at the point).
 /// `totals` holds the step's impulses per contact point for friction (contactImpulse); it may
-/// be null for frictionless worlds.
+/// be null for frictionless worlds; `sum`, when given, is the pair's entry of it.
 double collide(World& world, const ImpulseContact& contact, double restitution, GravityMode gravity,
-               double dt, const std::vector<char>& stable, FrictionTotals* totals = nullptr);
+               double dt, const std::vector<char>& stable, FrictionTotals* totals = nullptr,
+               FrictionSum* sum = nullptr);
 
 /// The relative normal speed at which the bodies of `contact` approach as COLLIDE with
 /// `gravity` sees it (\alg{COLLIDE L1-L6}: under VelocityPlusGravity each movable body's
@@ -102,6 +104,18 @@ struct PassResult {
 /// friction budget, goes to COLLIDE. With `settling` other than Never and a gathering that has
 /// islands (OncePerStep), an island the pass left unchanged by that rule is settled: later passes
 /// skip it until ContactIslands::activateAll (contact_islands.hpp; the same bits).
+///
+/// Threads (ImpulseParams::threads, through `gathering`): COLLIDE's loop is \alg{A.2}'s
+/// Gauss-Seidel sweep, each contact seeing what the contacts before it did. Two contacts that
+/// share no movable body commute exactly (each reads and writes its own two bodies and its
+/// pair's friction sums; immovable bodies are only read), so the contacts are put into
+/// dependency levels, each after every earlier contact that shares a movable body with it,
+/// and the contacts of one level run on the threads in any order: the same bits as the loop in
+/// order, for any number of threads, and no change to A.2's order. A pass runs so when
+/// it has at least ImpulseParams::parallelContacts contacts and none between a sleeper (gathering.sleepers())
+/// and an awake body, where `beforeCollide` may wake the sleeper and, through its supports,
+/// bodies of other contacts (Sleeping::wake); such a pass runs in order. `beforeCollide` must
+/// change nothing for a contact between two awake bodies.
 PassResult impulsePass(World& world, double dt, double restitution, GravityMode predict,
                        GravityMode impulseGravity, double margin, ContactGathering& gathering,
                        const std::vector<char>& stable, std::vector<char>* touched = nullptr,

@@ -14,6 +14,8 @@ ImpulseStepper::ImpulseStepper(const ImpulseStepperParams& params)
     : params_(params), gathering_(params.impulse) {
   if (params.impulse.collisionIterations < 1 || params.impulse.contactIterations < 1)
     throw std::invalid_argument("impulse: collision and contact iterations must be >= 1");
+  if (params.impulse.threads < 1)
+    throw std::invalid_argument("impulse: threads must be >= 1 (1: no second thread)");
 }
 
 std::map<std::string, std::string> ImpulseStepper::parameters() const {
