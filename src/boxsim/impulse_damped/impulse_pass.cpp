@@ -241,7 +241,7 @@ bool findLevels(const World& world, const std::vector<ImpulseContact>& contacts,
 void collideInLevels(World& world, std::vector<ImpulseContact>& contacts, const CollideCall& call,
                      const std::vector<char>& stable, std::vector<char>* touched,
                      const BeforeCollide& beforeCollide, FrictionTotals* totals,
-                     ContactIslands* islands, IslandSettling settling, int threads,
+                     ContactIslands* islands, IslandSettling settling, [[maybe_unused]] int threads,
                      CollideLevels& w, PassResult& result) {
   const std::size_t m = contacts.size();
   const int levels = static_cast<int>(w.start.size()) - 1;
