@@ -131,7 +131,7 @@ struct ImpulseParams {
   /// among `threads`, a frictional contact counting as 4 (its five friction rows): below it the
   /// threads' meeting at every level costs more than they save. 48, measured on this project's
   /// 2-core machine: the 1000-cube clump at e = 0 (about 14 frictionless contacts a level) ran
-  /// 8 % slower on 2 threads, with μ = 0.5 (16 frictional ones) 6 % faster. Speed only, the
+  /// 8 % slower on 2 threads, with μ = 0.5 (16 frictional ones) 3-6 % faster. Speed only, the
   /// same bits for any value (0: every pass of two contacts or more); not written into headers.
   int parallelContacts = 48;
 };

@@ -280,8 +280,8 @@ void collideInLevels(World& world, std::vector<ImpulseContact>& contacts, const 
   for (std::size_t k = 0; k < m; ++k) {
     if (w.impulse[k] > 0.0) ++result.impulses;
     result.changed = result.changed || w.changed[k];
-    if (islands && (w.changed[k] || (settling == IslandSettling::Unapproached && w.impulse[k] > 0.0)))
-      islands->markChanged(w.body[k]);
+    const bool approached = settling == IslandSettling::Unapproached && w.impulse[k] > 0.0;
+    if (islands && (w.changed[k] || approached)) islands->markChanged(w.body[k]);
   }
 }
 

@@ -111,11 +111,11 @@ struct PassResult {
 /// pair's friction sums; immovable bodies are only read), so the contacts are put into
 /// dependency levels, each after every earlier contact that shares a movable body with it,
 /// and the contacts of one level run on the threads in any order: the same bits as the loop in
-/// order, for any number of threads, and no change to A.2's order. A pass runs so when
-/// it has at least ImpulseParams::parallelContacts contacts and none between a sleeper (gathering.sleepers())
-/// and an awake body, where `beforeCollide` may wake the sleeper and, through its supports,
-/// bodies of other contacts (Sleeping::wake); such a pass runs in order. `beforeCollide` must
-/// change nothing for a contact between two awake bodies.
+/// order, for any number of threads, and no change to A.2's order. A pass runs so when its
+/// levels hold ImpulseParams::parallelContacts contacts on average and no contact is between a
+/// sleeper (gathering.sleepers()) and an awake body, where `beforeCollide` may wake the sleeper
+/// and, through its supports, bodies of other contacts (Sleeping::wake); such a pass runs in
+/// order. `beforeCollide` must change nothing for a contact between two awake bodies.
 PassResult impulsePass(World& world, double dt, double restitution, GravityMode predict,
                        GravityMode impulseGravity, double margin, ContactGathering& gathering,
                        const std::vector<char>& stable, std::vector<char>* touched = nullptr,
