@@ -516,7 +516,6 @@ PatchOutline patchOutline(const ContactManifold& m, const Vec3& centre) {
 }
 
 double contactPatchRadius(const ContactManifold& m) {
-  if (m.kind == AxisKind::EdgeEdge || m.count < 3) return contactPatchRadius(m, PatchOutline{});
   return contactPatchRadius(m, patchOutline(m, m.centroid()));
 }
 

@@ -285,6 +285,39 @@ void collideInLevels(World& world, std::vector<ImpulseContact>& contacts, const 
   }
 }
 
+/// COLLIDE's loop of impulsePass in A.2's order, contact after contact: its PassResult
+/// (impulses, whether anything changed) and the islands the contacts changed.
+void collideInOrder(World& world, std::vector<ImpulseContact>& contacts, const CollideCall& call,
+                    const std::vector<char>& stable, std::vector<char>* touched,
+                    const BeforeCollide& beforeCollide, FrictionTotals* totals,
+                    ContactIslands* islands, IslandSettling settling, PassResult& result) {
+  for (ImpulseContact& c : contacts) {
+    // The island of the contact's movable body (a movable body's island holds both).
+    const int body = world.bodies[c.a].immovable ? c.b : c.a;
+    // Once one contact changed a body the pass has changed the world: no more comparing,
+    // unless the islands need to know which.
+    const bool watch = !result.changed || (islands && !islands->changed(body));
+    const BodyMomenta beforeA(world.bodies[c.a]), beforeB(world.bodies[c.b]);
+    // The pair's friction sums, looked up once: COLLIDE finds the same entry, inserting none.
+    const FrictionSum* sum =
+        watch && totals && !c.friction.frictionless() ? &totals->at(c.a, c.b) : nullptr;
+    const SumBits sumBefore = sum ? SumBits(*sum) : SumBits();
+    if (beforeCollide) beforeCollide(world, c, call);
+    if (touched) (*touched)[c.a] = (*touched)[c.b] = 1;
+    const double j = collide(world, c, call.restitution, call.gravity, call.dt, stable, totals);
+    if (j > 0.0) ++result.impulses;
+    if (!watch) continue;
+    // With friction, the pair's sums (FrictionTotals) are state too, which the momenta do not
+    // show: an impulse too small to change them, or one COLLIDE L11-L14 takes back, still grows
+    // the budget, and a friction increment below their rounding still adds to the sums.
+    const bool changed = !beforeA.same(world.bodies[c.a]) || !beforeB.same(world.bodies[c.b]) ||
+                         (sum && !sumBefore.same(*sum));
+    result.changed = result.changed || changed;
+    if (islands && (changed || (settling == IslandSettling::Unapproached && j > 0.0)))
+      islands->markChanged(body);
+  }
+}
+
 }  // namespace
 
 PassResult impulsePass(World& world, double dt, double restitution, GravityMode predict,
@@ -311,34 +344,9 @@ PassResult impulsePass(World& world, double dt, double restitution, GravityMode 
     gathering.countLevelPass();
     collideInLevels(world, contacts, call, stable, touched, beforeCollide, totals, islands,
                     settling, gathering.threads(), gathering.collideLevels(), result);
-    if (islands) result.settled = islands->settleUnchanged();
-    gathering.end(world);
-    return result;
-  }
-  for (ImpulseContact& c : contacts) {
-    // The island of the contact's movable body (a movable body's island holds both).
-    const int body = world.bodies[c.a].immovable ? c.b : c.a;
-    // Once one contact changed a body the pass has changed the world: no more comparing,
-    // unless the islands need to know which.
-    const bool watch = !result.changed || (islands && !islands->changed(body));
-    const BodyMomenta beforeA(world.bodies[c.a]), beforeB(world.bodies[c.b]);
-    // The pair's friction sums, looked up once: COLLIDE finds the same entry, inserting none.
-    const FrictionSum* sum =
-        watch && totals && !c.friction.frictionless() ? &totals->at(c.a, c.b) : nullptr;
-    const SumBits sumBefore = sum ? SumBits(*sum) : SumBits();
-    if (beforeCollide) beforeCollide(world, c, call);
-    if (touched) (*touched)[c.a] = (*touched)[c.b] = 1;
-    const double j = collide(world, c, restitution, impulseGravity, dt, stable, totals);
-    if (j > 0.0) ++result.impulses;
-    if (!watch) continue;
-    // With friction, the pair's sums (FrictionTotals) are state too, which the momenta do not
-    // show: an impulse too small to change them, or one COLLIDE L11-L14 takes back, still grows
-    // the budget, and a friction increment below their rounding still adds to the sums.
-    const bool changed = !beforeA.same(world.bodies[c.a]) || !beforeB.same(world.bodies[c.b]) ||
-                         (sum && !sumBefore.same(*sum));
-    result.changed = result.changed || changed;
-    if (islands && (changed || (settling == IslandSettling::Unapproached && j > 0.0)))
-      islands->markChanged(body);
+  } else {
+    collideInOrder(world, contacts, call, stable, touched, beforeCollide, totals, islands,
+                   settling, result);
   }
   if (islands) result.settled = islands->settleUnchanged();
   // The momenta the impulses changed stay.
