@@ -381,26 +381,30 @@ TEST_CASE("Worlds stepped on separate threads at the same time give the same bit
 }
 
 TEST_CASE("Impulse and damped give the same bits on any number of threads: COLLIDE's contacts "
-          "run in dependency levels of A.2's own order",
+          "run in dependency levels of A.2's own order, the fast pairs' narrow phases each into "
+          "its own slot",
           "[impulse_damped][determinism][threads]") {
   // The resting pyramid hit by a die (its cubes fall asleep, and the die wakes them: passes with
   // a sleeper beside an awake body run in order), the fast clump, and the clump with Coulomb
   // friction beside a far pyramid. Every pass with two contacts or more is shared among the
-  // threads (parallelContacts 0), so the levels carry nearly every pass.
+  // threads (parallelContacts 0), so the levels carry nearly every pass, and so is every pass
+  // with a narrow phase of a pair with a fast body (parallelNarrowPhases 0).
   const World frictional = frictionalClump();
   const int steps = static_cast<int>(std::max(40L, testing::scaledCount(120)));
   for (const World& start : {manyContacts(), fastClump(), frictional}) {
     std::vector<double> damped[4], impulse[4];
-    long levelPasses[4] = {0, 0, 0, 0};
+    long levelPasses[4] = {0, 0, 0, 0}, testPasses[4] = {0, 0, 0, 0};
     const int threadCounts[4] = {1, 2, 3, 8};
     for (int t = 0; t < 4; ++t) {
       DampedIntegrationParams params;
       params.impulse.threads = threadCounts[t];
       params.impulse.parallelContacts = 0;
+      params.impulse.parallelNarrowPhases = 0;
       DampedIntegrationStepper stepper(params);
       ImpulseStepperParams plainParams;
       plainParams.impulse.threads = threadCounts[t];
       plainParams.impulse.parallelContacts = 0;
+      plainParams.impulse.parallelNarrowPhases = 0;
       ImpulseStepper plain(plainParams);
       World world = start, plainWorld = start;
       for (int k = 0; k < steps; ++k) {
@@ -410,15 +414,19 @@ TEST_CASE("Impulse and damped give the same bits on any number of threads: COLLI
         appendStates(plainWorld, impulse[t]);
       }
       levelPasses[t] = stepper.gathering().levelPasses();
+      testPasses[t] = stepper.gathering().parallelTestPasses();
     }
     CHECK(levelPasses[0] == 0);  // one thread: the loop in order
+    CHECK(testPasses[0] == 0);   // and each pair tested as it is planned
     for (int t = 1; t < 4; ++t) {
       CHECK(sameBits(damped[0], damped[t]));
       CHECK(sameBits(impulse[0], impulse[t]));
       // The same passes in levels for any number of threads above one, and most of them.
       CHECK(levelPasses[t] == levelPasses[1]);
+      CHECK(testPasses[t] == testPasses[1]);
     }
     CHECK(levelPasses[1] > 0);
+    CHECK(testPasses[1] > 0);
   }
 }
 

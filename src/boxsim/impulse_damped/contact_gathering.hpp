@@ -144,6 +144,8 @@ class ContactGathering {
   /// OncePerStep: bodies that sat a pass out because their island was settled (islands()),
   /// summed over the passes since construction, for tests and benches.
   long skippedBodyPasses() const { return once_.skippedBodyPasses(); }
+  /// OncePerStepGathering::parallelTestPasses().
+  long parallelTestPasses() const { return once_.parallelTestPasses(); }
 
  private:
   ImpulseParams params_;

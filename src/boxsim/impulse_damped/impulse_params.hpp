@@ -122,10 +122,12 @@ struct ImpulseParams {
   /// test back while both boxes stand exactly where they stood when it ran. Not written into
   /// output headers, as it changes no result.
   bool keepNarrowPhases = true;
-  /// Threads of COLLIDE's loop, >= 1 (impulse_pass.hpp, "Threads"): the same bits for any
-  /// number (tested), since the contacts run in dependency levels of A.2's own order. 1, the
-  /// default: no second thread. More are used only where OpenMP was found at build time (not
-  /// in the WebAssembly build) and a pass has `parallelContacts` contacts a level.
+  /// Threads of a pass, >= 1: COLLIDE's loop (impulse_pass.hpp, "Threads"), whose contacts
+  /// run in dependency levels of A.2's own order, and the narrow phases of the pairs with a
+  /// fast body (once_per_step_gathering.hpp), each pair's into its own slot. The same bits for
+  /// any number (tested). 1, the default: no second thread. More are used only where OpenMP was
+  /// found at build time (not in the WebAssembly build), and in a pass with `parallelContacts`
+  /// contacts a level or `parallelNarrowPhases` narrow phases.
   int threads = 1;
   /// Contacts a dependency level of a pass needs on average before COLLIDE's loop is shared
   /// among `threads`, a frictional contact counting as 4 (its five friction rows): below it the
@@ -134,6 +136,11 @@ struct ImpulseParams {
   /// 8 % slower on 2 threads, with μ = 0.5 (16 frictional ones) 3-6 % faster. Speed only, the
   /// same bits for any value (0: every pass of two contacts or more); not written into headers.
   int parallelContacts = 48;
+  /// Narrow phases of pairs with a fast body a pass needs before they are shared among
+  /// `threads`: each is 0.1-2 µs (a one-axis check or the full test and clip), the threads'
+  /// meeting a few µs. Speed only, the same bits for any value (0: every pass with one); not
+  /// written into headers.
+  int parallelNarrowPhases = 32;
 };
 
 /// Constants of DAMPENOBJECTS (\alg{A.2}), in the scaled units of this file's introduction.

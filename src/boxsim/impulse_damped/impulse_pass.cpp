@@ -9,6 +9,7 @@
 
 #include "boxsim/collision/broad_phase.hpp"
 #include "boxsim/core/newtonian_impulse.hpp"
+#include "boxsim/impulse_damped/openmp.hpp"
 
 namespace boxsim {
 
@@ -168,14 +169,6 @@ double collideImpulse(const World& world, const ImpulseContact& contact, double 
   return impulseWithGravity(a, b, contact, restitution, gravityVelocity(world, gravity, dt), nullptr,
                             false, false, false, nullptr);
 }
-
-/// An OpenMP pragma where the build has OpenMP (-fopenmp), nothing elsewhere (the WebAssembly
-/// build): the loop then runs on one thread, with the same result.
-#if defined(_OPENMP)
-#define BOXSIM_OMP(directive) _Pragma(#directive)
-#else
-#define BOXSIM_OMP(directive)
-#endif
 
 namespace {
 

@@ -8,6 +8,7 @@
 
 #include "boxsim/collision/broad_phase.hpp"
 #include "boxsim/collision/contact_manifold.hpp"
+#include "boxsim/impulse_damped/parallel_for.hpp"
 
 namespace boxsim {
 
@@ -190,13 +191,37 @@ void OncePerStepGathering::gatherFastPairs(World& world, const Vec3& gravityStep
   // candidates, so it keeps the pairs a sweep at these poses would find, in the same (a, b)
   // order, which is the cache's order too, so the two lists merge into one.
   fastContacts_.clear();
+  fastTasks_.clear();
+  fastTests_.clear();
   if (anyFast) {
     const std::vector<StepCandidates::Candidate>& candidates = candidates_.candidates();
-    // Only pairs with a fast body at its predicted pose (gatherFastPair's precondition): most
+    // Only pairs with a fast body at its predicted pose (planFastPair's precondition): most
     // candidates of a settling heap have none and cost no call.
-    for (std::size_t k = 0; k < candidates.size(); ++k)
-      if (poses_.fastAtPredicted(candidates[k].a) || poses_.fastAtPredicted(candidates[k].b))
-        gatherFastPair(world, k, gravityStep, dt, margin, normals);
+    // On one thread each pair is finished as soon as it is planned; on several, every pair is
+    // planned first, so that the narrow phases can run together (testFastPairs). The same
+    // operations in the same order for each pair, so the same bits.
+    const bool inOrder = params_.threads < 2;
+    if (inOrder && fastTested_.empty()) fastTested_.resize(1);
+    FastPairTask task;
+    for (std::size_t k = 0; k < candidates.size(); ++k) {
+      if (!poses_.fastAtPredicted(candidates[k].a) && !poses_.fastAtPredicted(candidates[k].b))
+        continue;
+      if (!planFastPair(world, k, gravityStep, dt, margin, task)) continue;
+      if (!inOrder) {
+        if (task.test >= 0) {
+          task.test = static_cast<int>(fastTests_.size());
+          fastTests_.push_back(static_cast<int>(fastTasks_.size()));
+        }
+        fastTasks_.push_back(task);
+        continue;
+      }
+      if (task.test >= 0) task.touching = candidateManifold(world, task, margin, fastTested_[0]);
+      finishFastPair(world, task, normals);
+    }
+  }
+  if (!fastTasks_.empty()) {
+    testFastPairs(world, margin);
+    for (const FastPairTask& task : fastTasks_) finishFastPair(world, task, normals);
   }
   // The pairs grow() added come after the sweep's: into the (a, b) order.
   if (candidates_.grown())
@@ -206,16 +231,16 @@ void OncePerStepGathering::gatherFastPairs(World& world, const Vec3& gravityStep
               });
 }
 
-void OncePerStepGathering::gatherFastPair(World& world, std::size_t k, const Vec3& gravityStep,
-                                          double dt, double margin,
-                                          ContactNormalTracker& normals) {
+bool OncePerStepGathering::planFastPair(const World& world, std::size_t k,
+                                        const Vec3& gravityStep, double dt, double margin,
+                                        FastPairTask& task) {
   StepCandidates::Candidate& candidate = candidates_.candidates()[k];
   const int a = candidate.a, b = candidate.b;
   // Two bodies moving together: predicted with the cached pairs (mergeSlowPairs).
   if (candidate.cached >= 0 &&
       slowPairs_.predictedTogether(
           bodies_, slowPairs_.reaches()[static_cast<std::size_t>(candidate.cached)]))
-    return;
+    return false;
   // RESOLVECOLLISIONS L2, RESOLVECONTACTS L2: a moved body's slow partner too, as written, so the narrow phase sees both where
   // the pass predicts them. It moves by at most its reach, so if its bounds stay farther than
   // that plus the margin from the moved body's, the pair cannot touch in the pass and it need
@@ -235,17 +260,11 @@ void OncePerStepGathering::gatherFastPair(World& world, std::size_t k, const Vec
   // would answer as then, so the answer is taken from then (the normal model still sees the
   // manifold, as it would).
   const std::uint64_t stampA = poses_.stamp(a, buildStamp_), stampB = poses_.stamp(b, buildStamp_);
-  const auto addContact = [&](ContactManifold m) {
-    poses_.moveToPredicted(world, a);
-    poses_.moveToPredicted(world, b);
-    if (m.count == 0) return;
-    m.a = a;
-    m.b = b;
-    fastContacts_.push_back(normals.contactOf(world, m));
-  };
+  task = FastPairTask{};
+  task.k = static_cast<int>(k);
   if (candidate.stampA == stampA && candidate.stampB == stampB) {
-    if (candidate.manifold >= 0) addContact(manifolds_[static_cast<std::size_t>(candidate.manifold)]);
-    return;
+    task.manifold = candidate.manifold;
+    return candidate.manifold >= 0;
   }
   candidate.stampA = stampA;
   candidate.stampB = stampB;
@@ -257,34 +276,75 @@ void OncePerStepGathering::gatherFastPair(World& world, std::size_t k, const Vec
   const Vec3& hiB = predictedB ? poses_.predicted(b).hi : bodies_.hi[b];
   if (!boundsWithin(loA, hiA, loB, hiB, margin)) {
     candidate.manifold = -1;
-    return;
+    return false;
   }
   // Made only for the pairs whose bounds meet: most candidates of a flying clump stop above.
-  ContactManifold m;
-  if (!candidateManifold(world, k, margin, m)) {
+  // The narrow phase itself may wait for testFastPairs, and sees the same poses then: a slow
+  // body whose bounds meet a fast one's stood as its partner above (the partner test is this
+  // one widened), so no later pair makes either body stand elsewhere.
+  task.test = 0;
+  return true;
+}
+
+void OncePerStepGathering::testFastPairs(const World& world, double margin) {
+  if (fastTested_.size() < fastTests_.size()) fastTested_.resize(fastTests_.size());
+  const int tests = static_cast<int>(fastTests_.size());
+  const auto test = [&](int t) {
+    FastPairTask& task = fastTasks_[static_cast<std::size_t>(fastTests_[static_cast<std::size_t>(t)])];
+    task.touching = candidateManifold(world, task, margin, fastTested_[static_cast<std::size_t>(t)]);
+  };
+  // Each test reads the poses planFastPair left and writes its own candidate and slot: in any
+  // order and on any thread, the same bits.
+  if (params_.threads > 1 && tests > 0 && tests >= params_.parallelNarrowPhases) {
+    parallelFor(tests, params_.threads, test);
+    ++parallelTestPasses_;
+  } else {
+    for (int t = 0; t < tests; ++t) test(t);
+  }
+}
+
+void OncePerStepGathering::finishFastPair(World& world, const FastPairTask& task,
+                                          ContactNormalTracker& normals) {
+  StepCandidates::Candidate& candidate = candidates_.candidates()[static_cast<std::size_t>(task.k)];
+  const int a = candidate.a, b = candidate.b;
+  const auto addContact = [&](ContactManifold m) {
+    poses_.moveToPredicted(world, a);
+    poses_.moveToPredicted(world, b);
+    if (m.count == 0) return;
+    m.a = a;
+    m.b = b;
+    fastContacts_.push_back(normals.contactOf(world, m));
+  };
+  if (task.test < 0) {
+    addContact(manifolds_[static_cast<std::size_t>(task.manifold)]);
+    return;
+  }
+  if (task.axisChecked)
+    ++passAxisChecks_;
+  else
+    ++passNarrowPhases_;
+  if (!task.touching) {
     candidate.manifold = -1;
     return;
   }
+  const ContactManifold& m = fastTested_[static_cast<std::size_t>(task.test)];
   if (candidate.manifold < 0) {
     candidate.manifold = static_cast<int>(manifolds_.size());
     manifolds_.push_back(m);
   } else {
     manifolds_[static_cast<std::size_t>(candidate.manifold)] = m;
   }
-  addContact(std::move(m));
+  addContact(m);
 }
 
-bool OncePerStepGathering::candidateManifold(const World& world, std::size_t k, double margin,
-                                             ContactManifold& manifold) {
-  StepCandidates::Candidate& candidate = candidates_.candidates()[k];
+bool OncePerStepGathering::candidateManifold(const World& world, FastPairTask& task,
+                                             double margin, ContactManifold& manifold) {
+  StepCandidates::Candidate& candidate = candidates_.candidates()[static_cast<std::size_t>(task.k)];
   const Obb a = poses_.box(world, candidate.a);
   const Obb b = poses_.box(world, candidate.b);
   // Apart last time, and still apart along the same axis: the full test would say so too.
-  if (candidate.apart && separatedBeyond(a, b, candidate.axis, margin)) {
-    ++passAxisChecks_;
-    return false;
-  }
-  ++passNarrowPhases_;
+  task.axisChecked = candidate.apart && separatedBeyond(a, b, candidate.axis, margin);
+  if (task.axisChecked) return false;
   const SeparatingAxisResult sat = separatingAxisTest(a, b);
   manifold = buildContactManifold(a, b, sat, margin);
   candidate.axis = sat;

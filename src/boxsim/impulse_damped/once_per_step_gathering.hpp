@@ -132,6 +132,8 @@ class OncePerStepGathering {
   long passAxisChecks() const { return passAxisChecks_; }
   /// Bodies that sat a pass out because their island was settled, summed over the passes.
   long skippedBodyPasses() const { return skippedBodyPasses_; }
+  /// Passes whose narrow phases of pairs with a fast body ran on several threads.
+  long parallelTestPasses() const { return parallelTestPasses_; }
 
  private:
   /// What a pass works out from a body's velocities before moving it: its reach and whether
@@ -143,6 +145,15 @@ class OncePerStepGathering {
     bool withinSwept = false; ///< withinSweptBounds' answer for the bounds of sweptStamp
     std::uint64_t sweptStamp = 0;  ///< the swept bounds asked about; 0: not asked
     std::uint64_t stamp = 0;  ///< valid when greater than buildStamp_
+  };
+
+  /// A pair with a fast body in a pass, between planFastPair and finishFastPair.
+  struct FastPairTask {
+    int k = -1;         ///< the candidate
+    int manifold = -1;  ///< test < 0: the index of its cached manifold in manifolds_
+    int test = -1;      ///< its narrow phase's slot in fastTested_, or -1: cached
+    bool axisChecked = false;  ///< the last separating axis answered (no full test)
+    bool touching = false;     ///< the narrow phase's answer
   };
 
   /// Whether the cache was built for `margin` and bodies of the mobility the world's have now.
@@ -163,17 +174,31 @@ class OncePerStepGathering {
   void refreshIslands(const World& world);
   /// RESOLVECOLLISIONS / RESOLVECONTACTS L2-L3 for the pairs with a fast body, as written: the contacts of the pass'
   /// fast bodies and their slow partners at their predicted poses, into fastContacts_ in
-  /// (a, b) order. The bodies that touch are moved there (putBackAll() returns them).
+  /// (a, b) order. The bodies that touch are moved there (putBackAll() returns them). Each pair
+  /// is planned (planFastPair), tested (candidateManifold) and finished (finishFastPair); on
+  /// one thread pair by pair, on several in three rounds, every pair planned in order, then
+  /// their narrow phases together (testFastPairs), then every pair finished in order.
   void gatherFastPairs(World& world, const Vec3& gravityStep, double dt, double margin,
                        ContactNormalTracker& normals);
-  /// The fast pair of candidate k at the pass' poses: its contact, if any, into fastContacts_.
-  /// One of its bodies must stand fast at its predicted pose (PassPoses::fastAtPredicted).
-  void gatherFastPair(World& world, std::size_t k, const Vec3& gravityStep, double dt,
-                      double margin, ContactNormalTracker& normals);
-  /// The narrow phase of candidate k where its bodies stand in the pass, trying its last
-  /// separating axis first and remembering the axis of this test; false (manifold left as it
-  /// was) when they do not touch within the margin.
-  bool candidateManifold(const World& world, std::size_t k, double margin,
+  /// The fast pair of candidate k at the pass' poses, up to its narrow phase: stands its slow
+  /// partner, and says in `task` whether the pair's cached manifold is its answer (test < 0) or
+  /// a narrow phase has to run (test 0); false when the pair has no contact (or is predicted
+  /// with the cached pairs). One of its bodies must stand fast at its predicted pose
+  /// (PassPoses::fastAtPredicted).
+  bool planFastPair(const World& world, std::size_t k, const Vec3& gravityStep, double dt,
+                    double margin, FastPairTask& task);
+  /// The narrow phases planFastPair listed, each into its own slot of fastTested_; on several
+  /// threads when ImpulseParams::threads > 1 and there are ImpulseParams::parallelNarrowPhases
+  /// of them.
+  void testFastPairs(const World& world, double margin);
+  /// The rest of a listed pair, in the planned order: its manifold kept, both bodies moved to
+  /// where the pass predicts them, and its contact into fastContacts_.
+  void finishFastPair(World& world, const FastPairTask& task, ContactNormalTracker& normals);
+  /// The narrow phase of the task's candidate where its bodies stand in the pass, trying its
+  /// last separating axis first and remembering the axis of this test; false (manifold left as
+  /// it was) when they do not touch within the margin. Writes only the candidate, the task and
+  /// `manifold`.
+  bool candidateManifold(const World& world, FastPairTask& task, double margin,
                          ContactManifold& manifold);
   /// revertToOriginalPositions for the pass' partners and fast bodies, before COLLIDE.
   void putBackAll(World& world);
@@ -200,6 +225,9 @@ class OncePerStepGathering {
   std::vector<int> outgrown_;         ///< this pass: fast bodies that outgrew their swept bounds
   std::vector<ContactManifold> manifolds_;  ///< the candidates' last manifolds (Candidate::manifold)
   std::vector<ImpulseContact> fastContacts_;  ///< this pass: the pairs with a fast body, by pair
+  std::vector<FastPairTask> fastTasks_;       ///< this pass: planFastPair's list, in order
+  std::vector<int> fastTests_;                ///< this pass: the tasks with a narrow phase
+  std::vector<ContactManifold> fastTested_;   ///< per narrow phase of fastTests_: its manifold
   ContactIslands islands_;            ///< the islands of the candidates (islands())
   KeptNarrowPhase kept_;              ///< the narrow phases of the step (kept())
   std::uint64_t islandSweep_ = 0;     ///< the sweep islands_ was built after
@@ -212,6 +240,7 @@ class OncePerStepGathering {
   long passNarrowPhases_ = 0;
   long passAxisChecks_ = 0;
   long skippedBodyPasses_ = 0;
+  long parallelTestPasses_ = 0;
 };
 
 }  // namespace boxsim
