@@ -430,6 +430,55 @@ TEST_CASE("Impulse and damped give the same bits on any number of threads: COLLI
   }
 }
 
+TEST_CASE("Measuring the work the threads share changes no bit, and counts it as the threads "
+          "would take it",
+          "[impulse_damped][determinism][threads]") {
+  // The fast clump and the frictional one on one thread, every shareable pass counted
+  // (parallelContacts and parallelNarrowPhases 0), with the measure on and off.
+  const int steps = static_cast<int>(std::max(30L, testing::scaledCount(60)));
+  for (const World& start : {fastClump(), frictionalClump()}) {
+    std::vector<double> states[2];
+    DampedStepProfile profiles[2];
+    long passTests = 0;
+    for (int measure = 0; measure < 2; ++measure) {
+      DampedIntegrationParams params;
+      params.impulse.parallelContacts = 0;
+      params.impulse.parallelNarrowPhases = 0;
+      DampedIntegrationStepper stepper(params);
+      profiles[measure].measureParallelWork = measure == 1;
+      stepper.setProfile(&profiles[measure]);
+      World world = start;
+      for (int k = 0; k < steps; ++k) {
+        stepper.step(world, 1.0 / 60.0);
+        appendStates(world, states[measure]);
+      }
+      passTests = stepper.gathering().passNarrowPhases() + stepper.gathering().passAxisChecks();
+    }
+    CHECK(sameBits(states[0], states[1]));
+    const ParallelWork& off = profiles[0].parallelWork;
+    CHECK(off.testRounds[0] == 0);
+    CHECK(off.levelRounds[0] == 0);
+    const ParallelWork& work = profiles[1].parallelWork;
+    // On one thread a loop of n items is n rounds; on N threads ceil(n / N) of each loop, so
+    // at least the items over N, and never more than on fewer threads.
+    REQUIRE(work.testRounds[0] > 0);
+    REQUIRE(work.levelRounds[0] > 0);
+    for (std::size_t i = 1; i < ParallelWork::threadCounts.size(); ++i) {
+      const long n = ParallelWork::threadCounts[i];
+      CHECK(work.testRounds[i] * n >= work.testRounds[0]);
+      CHECK(work.levelRounds[i] * n >= work.levelRounds[0]);
+      CHECK(work.testRounds[i] <= work.testRounds[i - 1]);
+      CHECK(work.levelRounds[i] <= work.levelRounds[i - 1]);
+    }
+    // The narrow phases counted are the passes' own.
+    CHECK(work.testRounds[0] == passTests);
+    CHECK(work.testSeconds > 0.0);
+    CHECK(work.levelSeconds > 0.0);
+    // COLLIDE's levels hold fewer contacts than the passes' loops: a level is a loop.
+    CHECK(work.levelRounds.back() < work.levelRounds[0]);
+  }
+}
+
 TEST_CASE("Threads must be at least one", "[impulse_damped][threads]") {
   DampedIntegrationParams params;
   params.impulse.threads = 0;

@@ -12,6 +12,7 @@
 
 #include "boxsim/core/math.hpp"
 #include "boxsim/core/world.hpp"
+#include "boxsim/impulse_damped/parallel_for.hpp"
 
 namespace boxsim::peers {
 
@@ -77,6 +78,13 @@ struct StepWork {
   double passesPerStep = 0.0;  ///< collision and contact passes per step
 };
 
+/// boxsim damped's work that threads share, measured in one untimed run on one thread (the
+/// page's model of more cores).
+struct SharedWork {
+  double stepSeconds = 0.0;  ///< s, the run's steps, every stage (DampedStepProfile::total)
+  ParallelWork work;         ///< the part of them the threads would share
+};
+
 /// An engine under comparison.
 class PeerEngine {
  public:
@@ -99,6 +107,8 @@ class PeerEngine {
   /// The work of the steps since load() that had a body awake, for the engines that count it
   /// (boxsim damped: DampedStepProfile); nullopt for the others.
   virtual std::optional<StepWork> work() const { return std::nullopt; }
+  /// boxsim damped with "+shared_work": what its threads would share, after a run.
+  virtual std::optional<SharedWork> sharedWork() const { return std::nullopt; }
 };
 
 /// boxsim under one of its methods (techniques.hpp), e.g. "damped", or a method with a contact

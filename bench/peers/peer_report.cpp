@@ -253,6 +253,61 @@ std::string stages(const std::vector<SceneResults>& scenes) {
          "why):\n\n" + out.str() + "\n";
 }
 
+/// What more cores would buy boxsim damped on the dense scenes: the shared work of an untimed
+/// one-thread run (RunResult::sharedWork) in Amdahl's law with each loop's rounds
+/// (ParallelWork), beside the two-thread rows measured here.
+std::string coresModel(const std::vector<SceneResults>& scenes) {
+  std::ostringstream out;
+  const std::pair<const char*, double> dense[] = {
+      {"pile343", 0.0},   {"pile343", 0.9},    {"clump1000", 0.0}, {"clump1000", 0.5},
+      {"clump1000", 0.9}, {"clump10000", 0.0}, {"clump10000", 0.9}};
+  for (const char* engine : {"boxsim damped", "boxsim damped μ"})
+    for (const auto& [base, e] : dense) {
+      const SceneResults* s = sceneOf(scenes, base, e);
+      const RunResult* r = s ? find(*s, engine) : nullptr;
+      if (!r || !r->sharedWork || !(r->sharedWork->stepSeconds > 0.0)) continue;
+      const SharedWork& w = *r->sharedWork;
+      const double tests = w.work.testSeconds / w.stepSeconds;
+      const double levels = w.work.levelSeconds / w.stepSeconds;
+      // Time on N threads over time on one: the serial rest, and each shared kind in the rounds
+      // N threads take.
+      const auto speedup = [&](std::size_t i) {
+        const auto part = [&](double share, const std::array<long, 5>& rounds) {
+          return rounds[0] > 0 ? share * static_cast<double>(rounds[i]) /
+                                     static_cast<double>(rounds[0])
+                               : share;
+        };
+        return 1.0 / ((1.0 - tests - levels) + part(tests, w.work.testRounds) +
+                      part(levels, w.work.levelRounds));
+      };
+      out << "- " << engine << ", " << s->spec.label() << ": shared "
+          << fixed(100.0 * (tests + levels), 0) << " % (the fast pairs' narrow phases "
+          << fixed(100.0 * tests, 0) << " %, COLLIDE's levels " << fixed(100.0 * levels, 0)
+          << " %); the model";
+      for (std::size_t i = 1; i < ParallelWork::threadCounts.size(); ++i)
+        out << (i > 1 ? "," : "") << " " << ParallelWork::threadCounts[i] << " threads "
+            << fixed(speedup(i), 2) << "×";
+      out << " (Amdahl's bound " << fixed(1.0 / (1.0 - tests - levels), 2) << "×)";
+      const RunResult* two = find(*s, std::string(engine) + " 2 threads");
+      if (two && two->meanMs() > 0.0)
+        out << "; measured here on 2 threads " << fixed(r->meanMs() / two->meanMs(), 2)
+            << "× (the means of the two rows)";
+      out << "\n";
+    }
+  if (out.str().empty()) return "";
+  return "**What more cores would buy boxsim damped** (a model): the part of a step its threads "
+         "share (ImpulseParams::threads; the impulse chapter, \"Threads\"), timed in an untimed "
+         "run of its own on one thread, as a share of the step: the narrow phases of the pairs "
+         "with a fast body in each pass, and COLLIDE's loop in dependency levels. Everything else "
+         "(the rest of the gathering, the step's start, FIXCONTACTCONSTRAINTS, damping, sleeping) "
+         "runs on one thread. On N threads each shared loop of n items takes ceil(n / N) rounds, "
+         "a level of COLLIDE being one loop; the model charges each kind its one-thread time "
+         "times its rounds on N over its rounds on one, as if every item cost the same and the "
+         "threads met for free, so it is an upper bound. The two-thread rows of the table are "
+         "measured on this 2-core machine, where a second busy core slows the first (the impulse "
+         "chapter, \"Threads\"):\n\n" + out.str() + "\n";
+}
+
 /// \thesis{§6.1}: the frame rates the thesis reports (Fig. 6.6, the shot pyramid, 25 fps;
 /// Fig. 6.7, the clump, 20 fps; both on a 1500 MHz AMD processor) beside boxsim damped's steps
 /// here, one step a frame.
@@ -447,7 +502,9 @@ std::string markdownPage(const std::vector<SceneResults>& scenes, const RunSetup
       << "`cmake --build build --target bench_peers`.\n\n" << stampText << "- command: `"
       << setup.command << "`\n\n"
       << "## How it is measured\n\n"
-      << "One process, one thread, Δt = " << fixed(setup.dt, 6) << " s, 1 kg unit cubes. Each scene runs "
+      << "One process, one thread (boxsim's rows marked *2 threads* aside; Bullet and ODE step on "
+      << "one thread as the harness calls them, btDiscreteDynamicsWorld and dWorldQuickStep with "
+      << "no threading implementation), Δt = " << fixed(setup.dt, 6) << " s, 1 kg unit cubes. Each scene runs "
       << setup.reps << " times under every engine, interleaved (engine A repetition 1, engine B "
       << "repetition 1, …). A step's time is the wall-clock time of the engine's step alone. "
       << "**Mean** ms/step is over every step of every repetition; median and 95th percentile "
@@ -473,7 +530,7 @@ std::string markdownPage(const std::vector<SceneResults>& scenes, const RunSetup
       << "contact per step; and collision and contact passes per step.\n\n"
       << "## Summary\n\n" << summary(scenes) << aims(scenes)
       << (setup.baseline ? baselineComparison(scenes, *setup.baseline) : "")
-      << stages(scenes) << realTime(scenes) << memory(scenes)
+      << stages(scenes) << coresModel(scenes) << realTime(scenes) << memory(scenes)
       << "## Table\n\n"
       << "| scene | boxes | engine | mean ms/step | median | p95 | rep means | mean ÷ boxsim damped's "
       << "| penetration mean / final / max (mm) | kinetic energy at end (J) | asleep at end "

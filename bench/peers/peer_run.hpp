@@ -60,6 +60,9 @@ struct RunResult {
   std::vector<std::pair<std::string, double>> stages;
   double stagedStepsMs = 0.0;  ///< ms, the first repetition's step times summed
   std::optional<StepWork> work;  ///< the first repetition's work (PeerEngine::work)
+  /// boxsim damped on the scenes of the aims: its shared work, from a run of its own
+  /// (PeerEngine::sharedWork).
+  std::optional<SharedWork> sharedWork;
 
   double meanMs() const;    ///< over every step of every repetition
   double medianMs() const;  ///< over every step of every repetition

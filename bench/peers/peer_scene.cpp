@@ -51,7 +51,9 @@ class BoxsimEngine : public PeerEngine {
   /// Coulomb friction, as the peers have it ("damped+friction"), in "+chatter": chatter
   /// detected from history (SleepParams::chatterDetection, "damped+chatter"), and in
   /// "+under_load": geometric stability with stability under load (\thesis{§6.3.1},
-  /// "damped+under_load"); the suffixes in any order.
+  /// "damped+under_load"), in "+threads2": two threads (ImpulseParams::threads), and in
+  /// "+shared_work": the work its threads would share measured (sharedWork()); the suffixes
+  /// in any order.
   explicit BoxsimEngine(std::string engine) {
     const auto strip = [&engine](const std::string& plus) {
       const bool ends = engine.size() > plus.size() &&
@@ -61,11 +63,14 @@ class BoxsimEngine : public PeerEngine {
     };
     for (bool stripped = true; stripped;) {
       const bool chatter = strip("+chatter"), friction = strip("+friction"),
-                 underLoad = strip("+under_load");
+                 underLoad = strip("+under_load"), threads = strip("+threads2"),
+                 shared = strip("+shared_work");
       if (chatter) options_.chatterDetection = true;
       if (friction) friction_ = true;
       if (underLoad) options_.geometricStability = GeometricStabilityMode::UnderLoad;
-      stripped = chatter || friction || underLoad;
+      if (threads) options_.threads = 2;
+      if (shared) measureShared_ = true;
+      stripped = chatter || friction || underLoad || threads || shared;
     }
     const std::size_t slash = engine.find('/');
     method_ = engine.substr(0, slash);
@@ -78,14 +83,16 @@ class BoxsimEngine : public PeerEngine {
   std::string name() const override {
     return "boxsim " + method_ + (gathering_.empty() ? "" : " " + gathering_) + (friction_ ? " μ" : "") +
            (options_.chatterDetection.value_or(false) ? " chatter" : "") +
-           (options_.geometricStability == GeometricStabilityMode::UnderLoad ? " under load" : "");
+           (options_.geometricStability == GeometricStabilityMode::UnderLoad ? " under load" : "") +
+           (options_.threads.value_or(1) > 1 ? " " + std::to_string(*options_.threads) + " threads" : "");
   }
   std::string settings() const override {
     std::string text;
     for (const auto& [key, value] : stepper_->parameters())
       if (key == "integrator" || key == "sleep" || key == "contact_gathering" ||
           (key == "chatter_detection" && value == "on") ||
-          (key == "geometric_stability" && value == "under_load"))
+          (key == "geometric_stability" && value == "under_load") ||
+          (key == "threads" && value != "1"))
         text += (text.empty() ? "" : ", ") + key + " " + value;
     return (text.empty() ? "defaults" : text) +
            (friction_ ? ", Coulomb friction as the peers (patch friction at each contact's centroid)"
@@ -100,6 +107,7 @@ class BoxsimEngine : public PeerEngine {
       options_.sleep = scene.sleep;
       stepper_ = makeStepper(method_, options_);
       profile_ = DampedStepProfile{};
+      profile_.measureParallelWork = measureShared_;
       if (auto* damped = dynamic_cast<DampedIntegrationStepper*>(stepper_.get()))
         damped->setProfile(&profile_);
     }
@@ -141,11 +149,16 @@ class BoxsimEngine : public PeerEngine {
                     static_cast<double>(profile_.axisChecks) / pairs,
                     static_cast<double>(profile_.passes) / static_cast<double>(profile_.workSteps)};
   }
+  std::optional<SharedWork> sharedWork() const override {
+    if (!measureShared_ || profile_.steps == 0) return std::nullopt;
+    return SharedWork{profile_.total(), profile_.parallelWork};
+  }
 
  private:
   std::string method_;
   std::string gathering_;  ///< empty: the method's default
   bool friction_ = false;  ///< the scene's friction on every body
+  bool measureShared_ = false;  ///< "+shared_work"
   TechniqueOptions options_;
   std::unique_ptr<Stepper> stepper_;
   DampedStepProfile profile_;  ///< damped: the stage times of the steps since load()

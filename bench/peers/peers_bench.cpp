@@ -165,12 +165,23 @@ std::vector<std::string> peersOf(const SceneSpec& spec) {
   return peers;
 }
 
+/// Whether `spec` is one of the dense scenes, where boxsim damped runs on two threads too and
+/// its shared work is measured for the model of more cores.
+bool denseScene(const SceneSpec& spec) {
+  return spec.base == "pile343" || spec.base == "clump1000" || spec.base == "clump10000";
+}
+
 /// The engines of one scene: those asked for, or by default boxsim damped integration
 /// (frictionless as the thesis, and with the peers' friction) and every peer found (peersOf).
 std::vector<std::string> enginesOf(const SceneSpec& spec, const std::vector<std::string>& asked) {
   if (!asked.empty()) return asked;
   std::vector<std::string> engines = {"damped", "damped+friction", "damped+chatter",
                                       "damped+under_load"};
+  // The dense scenes, on two threads too (issue of threads: the model on the page).
+  if (denseScene(spec)) {
+    engines.push_back("damped+threads2");
+    engines.push_back("damped+friction+threads2");
+  }
   for (const std::string& peer : peersOf(spec)) engines.push_back(peer);
   return engines;
 }
@@ -184,6 +195,14 @@ SceneResults runScene(const SceneSpec& spec, const std::vector<std::string>& eng
       setup.settings[engine->name()] = engine->settings();
       runRepetition(spec, *engine, setup.dt, results.runs[i]);
     }
+  // What boxsim damped's threads would share, in an untimed run of its own on one thread.
+  if (denseScene(spec))
+    for (std::size_t i = 0; i < engines.size(); ++i)
+      if (engines[i] == "damped" || engines[i] == "damped+friction") {
+        std::unique_ptr<PeerEngine> engine = makeEngine(engines[i] + "+shared_work");
+        runOnce(spec, engine.get(), setup.dt);
+        results.runs[i].sharedWork = engine->sharedWork();
+      }
   // The largest clump's memory: each engine in a fresh process of its own, and the same
   // process stepping nothing for the part that is the scene and the program.
   if (spec.base == "clump10000") {

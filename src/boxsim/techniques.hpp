@@ -40,7 +40,7 @@ struct TechniqueOptions {
   /// Visual plausibility (\thesis{§4.2}) of damped integration: perturbation on with this seed;
   /// empty: off.
   std::optional<unsigned long> plausibilitySeed;
-  /// Threads of COLLIDE's loop of the impulse-based techniques (ImpulseParams::threads, >= 1;
+  /// Threads of the passes of the impulse-based techniques (ImpulseParams::threads, >= 1;
   /// the same trajectory for any number); empty: default (1).
   std::optional<int> threads;
 };

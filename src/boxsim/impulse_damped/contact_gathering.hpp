@@ -112,6 +112,14 @@ class ContactGathering {
     sleepers_ = asleep;
     once_.setSleepers(asleep);
   }
+  /// Where the work the passes' threads share is measured (ParallelWork; benches), or null:
+  /// none. The pointer must outlive the gathering's use of it.
+  void setParallelWork(ParallelWork* work) {
+    work_ = work;
+    once_.setParallelWork(work);
+  }
+  /// What setParallelWork gave, or null.
+  ParallelWork* parallelWork() const { return work_; }
   /// The sleepers given to setSleepers (one flag per body), or null.
   const std::vector<char>* sleepers() const { return sleepers_; }
   /// ImpulseParams::threads of the parameters this gathering was made with.
@@ -150,6 +158,7 @@ class ContactGathering {
  private:
   ImpulseParams params_;
   const std::vector<char>* sleepers_ = nullptr;  ///< setSleepers()
+  ParallelWork* work_ = nullptr;                 ///< setParallelWork()
   CollideLevels collideLevels_;                  ///< collideLevels()
   long levelPasses_ = 0;                         ///< levelPasses()
   ContactNormalTracker normals_;

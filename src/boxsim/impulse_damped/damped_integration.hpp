@@ -108,6 +108,11 @@ struct DampedStepProfile {
   long keptNarrowPhases = 0;  ///< narrow phases handed back by KeptNarrowPhase instead of run
   long touchingPairs = 0;   ///< pairs in contact at their ends, summed (StepStats::contacts)
   long passes = 0;          ///< collision and contact passes run in them
+  /// Whether to measure parallelWork (set before setProfile): the work the passes' threads
+  /// share, for the model of more cores. Off by default: measuring plans every pass' pairs
+  /// before their narrow phases, which costs a little on one thread.
+  bool measureParallelWork = false;
+  ParallelWork parallelWork;  ///< the shared work, when measureParallelWork
   /// s, the sum of the stages.
   double total() const {
     return stepContacts + collisionPasses + contactPasses + shockSweep + velocitiesAndDamping +
@@ -157,7 +162,11 @@ class DampedIntegrationStepper final : public Stepper {
   const ContactGathering& gathering() const { return gathering_; }
   /// Adds the time of every later step to `profile`, stage by stage (nullptr: stop). The
   /// profile must outlive its use; copies of the stepper share it.
-  void setProfile(DampedStepProfile* profile) { profile_ = profile; }
+  void setProfile(DampedStepProfile* profile) {
+    profile_ = profile;
+    gathering_.setParallelWork(profile && profile->measureParallelWork ? &profile->parallelWork
+                                                                       : nullptr);
+  }
 
  private:
   /// \alg{DAMPEDINTEGRATION L1-L6} for dt s, as step() without continuous collisions.

@@ -3,6 +3,7 @@
 #include "boxsim/impulse_damped/impulse_pass.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -173,10 +174,10 @@ double collideImpulse(const World& world, const ImpulseContact& contact, double 
 namespace {
 
 /// Whether COLLIDE's loop of a pass may run in dependency levels on several threads (the
-/// conditions of impulsePass' "Threads").
+/// conditions of impulsePass' "Threads", the threads aside).
 bool levelsApply(const World& world, const std::vector<ImpulseContact>& contacts,
                  const ContactGathering& gathering, const BeforeCollide& beforeCollide) {
-  if (gathering.threads() < 2 || contacts.size() < 2) return false;
+  if (contacts.size() < 2) return false;
   if (!beforeCollide) return true;
   const std::vector<char>* asleep = gathering.sleepers();
   if (!asleep || asleep->size() != world.bodies.size()) return false;
@@ -332,14 +333,27 @@ PassResult impulsePass(World& world, double dt, double restitution, GravityMode 
   if (totals) totals->shareWeights(world, contacts, dt);
   // The pass' contacts are those of the islands still active (contact_islands.hpp).
   ContactIslands* islands = settling == IslandSettling::Never ? nullptr : gathering.islands();
-  if (levelsApply(world, contacts, gathering, beforeCollide) &&
-      findLevels(world, contacts, gathering.parallelContacts(), gathering.collideLevels())) {
+  // Levels are found when threads may share them, or when their work is measured.
+  ParallelWork* work = gathering.parallelWork();
+  const bool shared =
+      (gathering.threads() > 1 || work) && levelsApply(world, contacts, gathering, beforeCollide) &&
+      findLevels(world, contacts, gathering.parallelContacts(), gathering.collideLevels());
+  const auto start =
+      work ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
+  if (shared && gathering.threads() > 1) {
     gathering.countLevelPass();
     collideInLevels(world, contacts, call, stable, touched, beforeCollide, totals, islands,
                     settling, gathering.threads(), gathering.collideLevels(), result);
   } else {
     collideInOrder(world, contacts, call, stable, touched, beforeCollide, totals, islands,
                    settling, result);
+  }
+  if (work && shared) {
+    work->levelSeconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const std::vector<int>& levelStart = gathering.collideLevels().start;
+    for (std::size_t l = 0; l + 1 < levelStart.size(); ++l)
+      ParallelWork::countLoop(work->levelRounds, levelStart[l + 1] - levelStart[l]);
   }
   if (islands) result.settled = islands->settleUnchanged();
   // The momenta the impulses changed stay.

@@ -3,6 +3,7 @@
 #include "boxsim/impulse_damped/once_per_step_gathering.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstddef>
 #include <utility>
 
@@ -200,7 +201,7 @@ void OncePerStepGathering::gatherFastPairs(World& world, const Vec3& gravityStep
     // On one thread each pair is finished as soon as it is planned; on several, every pair is
     // planned first, so that the narrow phases can run together (testFastPairs). The same
     // operations in the same order for each pair, so the same bits.
-    const bool inOrder = params_.threads < 2;
+    const bool inOrder = params_.threads < 2 && !work_;
     if (inOrder && fastTested_.empty()) fastTested_.resize(1);
     FastPairTask task;
     for (std::size_t k = 0; k < candidates.size(); ++k) {
@@ -295,11 +296,19 @@ void OncePerStepGathering::testFastPairs(const World& world, double margin) {
   };
   // Each test reads the poses planFastPair left and writes its own candidate and slot: in any
   // order and on any thread, the same bits.
-  if (params_.threads > 1 && tests > 0 && tests >= params_.parallelNarrowPhases) {
+  const bool shared = tests > 0 && tests >= params_.parallelNarrowPhases;
+  const auto start =
+      work_ ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
+  if (params_.threads > 1 && shared) {
     parallelFor(tests, params_.threads, test);
     ++parallelTestPasses_;
   } else {
     for (int t = 0; t < tests; ++t) test(t);
+  }
+  if (work_ && shared) {
+    work_->testSeconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    ParallelWork::countLoop(work_->testRounds, tests);
   }
 }
 

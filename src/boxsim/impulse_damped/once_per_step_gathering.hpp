@@ -74,6 +74,7 @@
 #include "boxsim/impulse_damped/contact_islands.hpp"
 #include "boxsim/impulse_damped/contact_normal.hpp"
 #include "boxsim/impulse_damped/impulse_params.hpp"
+#include "boxsim/impulse_damped/parallel_for.hpp"
 #include "boxsim/impulse_damped/pass_poses.hpp"
 #include "boxsim/impulse_damped/slow_pair_cache.hpp"
 #include "boxsim/impulse_damped/step_bodies.hpp"
@@ -122,6 +123,9 @@ class OncePerStepGathering {
   /// movable there and join their partners' islands (contact_islands.hpp). The vector must
   /// outlive the step.
   void setSleepers(const std::vector<char>* asleep) { sleepers_ = asleep; }
+  /// Where the shared narrow phases' work is measured (ParallelWork), or null: none. While
+  /// measured, every pass plans its pairs before their narrow phases, on one thread too.
+  void setParallelWork(ParallelWork* work) { work_ = work; }
 
   /// Builds of the cache since construction (one narrow phase of the slow pairs each).
   long narrowPhases() const { return narrowPhases_; }
@@ -235,6 +239,7 @@ class OncePerStepGathering {
   std::vector<char> skip_;            ///< per body, this pass: its island is settled
   std::vector<char> movable_;         ///< per body, refreshIslands(): movable, or a sleeper
   const std::vector<char>* sleepers_ = nullptr;  ///< setSleepers()
+  ParallelWork* work_ = nullptr;                 ///< setParallelWork()
   bool anySkipped_ = false;           ///< this pass: some body's island is settled
   long narrowPhases_ = 0;
   long passNarrowPhases_ = 0;

@@ -1,8 +1,10 @@
 /// \file
 /// A loop over independent items on several threads (OpenMP), for the damped step's threads
-/// (ImpulseParams::threads).
+/// (ImpulseParams::threads), and the measure of the work such loops share (ParallelWork).
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <functional>
 
 namespace boxsim {
@@ -12,5 +14,28 @@ namespace boxsim {
 /// independent (each writes only its own results), so any order gives the same bits. Without
 /// OpenMP (the WebAssembly build) the calls run in order on the calling thread.
 void parallelFor(int count, int threads, const std::function<void(int)>& item);
+
+/// The work of a step's passes that threads share, for a model of what more cores would buy
+/// (Amdahl's law with the loops' own granularity). Measured on any number of threads, one
+/// included: the loops that would be shared are timed as they run. Two kinds, each of loops of
+/// independent items: the narrow phases of the pairs with a fast body in a pass (one loop of
+/// `tests` items, when ImpulseParams::parallelNarrowPhases are reached) and COLLIDE's
+/// dependency levels (one loop per level, when ImpulseParams::parallelContacts are reached; a
+/// pass with a sleeper beside an awake body runs in order and is not counted). N threads take
+/// a loop of n items in ceil(n / N) rounds, so a kind's time on N threads, if every item cost
+/// the same and the threads met for free, is its time on one times rounds[N] / rounds[1].
+struct ParallelWork {
+  /// The thread counts the rounds are counted for.
+  static constexpr std::array<int, 5> threadCounts = {1, 2, 8, 16, 64};
+  double testSeconds = 0.0;   ///< s, in the shared loops of narrow phases
+  double levelSeconds = 0.0;  ///< s, in COLLIDE's loops of the shared passes
+  std::array<long, 5> testRounds{};   ///< per threadCounts[i]: rounds of the narrow phases
+  std::array<long, 5> levelRounds{};  ///< per threadCounts[i]: rounds of COLLIDE's levels
+  /// Counts a loop of n items into `rounds`.
+  static void countLoop(std::array<long, 5>& rounds, long n) {
+    for (std::size_t i = 0; i < threadCounts.size(); ++i)
+      rounds[i] += (n + threadCounts[i] - 1) / threadCounts[i];
+  }
+};
 
 }  // namespace boxsim
