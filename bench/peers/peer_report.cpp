@@ -504,7 +504,8 @@ std::string markdownPage(const std::vector<SceneResults>& scenes, const RunSetup
       << "## How it is measured\n\n"
       << "One process, one thread (boxsim's rows marked *2 threads* aside; Bullet and ODE step on "
       << "one thread as the harness calls them, btDiscreteDynamicsWorld and dWorldQuickStep with "
-      << "no threading implementation), Δt = " << fixed(setup.dt, 6) << " s, 1 kg unit cubes. Each scene runs "
+      << "no threading implementation), Δt = " << fixed(setup.dt, 6)
+      << " s, 1 kg unit cubes. Each scene runs "
       << setup.reps << " times under every engine, interleaved (engine A repetition 1, engine B "
       << "repetition 1, …). A step's time is the wall-clock time of the engine's step alone. "
       << "**Mean** ms/step is over every step of every repetition; median and 95th percentile "

@@ -84,7 +84,8 @@ class BoxsimEngine : public PeerEngine {
     return "boxsim " + method_ + (gathering_.empty() ? "" : " " + gathering_) + (friction_ ? " μ" : "") +
            (options_.chatterDetection.value_or(false) ? " chatter" : "") +
            (options_.geometricStability == GeometricStabilityMode::UnderLoad ? " under load" : "") +
-           (options_.threads.value_or(1) > 1 ? " " + std::to_string(*options_.threads) + " threads" : "");
+           (options_.threads.value_or(1) > 1 ? " " + std::to_string(*options_.threads) + " threads"
+                                             : "");
   }
   std::string settings() const override {
     std::string text;

@@ -291,8 +291,9 @@ void OncePerStepGathering::testFastPairs(const World& world, double margin) {
   if (fastTested_.size() < fastTests_.size()) fastTested_.resize(fastTests_.size());
   const int tests = static_cast<int>(fastTests_.size());
   const auto test = [&](int t) {
-    FastPairTask& task = fastTasks_[static_cast<std::size_t>(fastTests_[static_cast<std::size_t>(t)])];
-    task.touching = candidateManifold(world, task, margin, fastTested_[static_cast<std::size_t>(t)]);
+    const std::size_t slot = static_cast<std::size_t>(t);
+    FastPairTask& task = fastTasks_[static_cast<std::size_t>(fastTests_[slot])];
+    task.touching = candidateManifold(world, task, margin, fastTested_[slot]);
   };
   // Each test reads the poses planFastPair left and writes its own candidate and slot: in any
   // order and on any thread, the same bits.
