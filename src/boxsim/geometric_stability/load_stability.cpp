@@ -126,6 +126,7 @@ bool componentHolds(const World& world, const std::vector<int>& bodies,
   (void)world;
   (void)cornerTolerance;
   (void)localIndex;
+  (void)weight;
   throw std::runtime_error(
       "stability under load: this build has no GLPK (libglpk-dev), so it cannot solve the "
       "equilibrium programs; use the geometric stability of §5.4 alone");
