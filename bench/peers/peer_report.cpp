@@ -272,7 +272,7 @@ std::string coresModel(const std::vector<SceneResults>& scenes) {
       // Time on N threads over time on one: the serial rest, and each shared kind in the rounds
       // N threads take.
       const auto speedup = [&](std::size_t i) {
-        const auto part = [&](double share, const std::array<long, 5>& rounds) {
+        const auto part = [&](double share, const ParallelWork::Rounds& rounds) {
           return rounds[0] > 0 ? share * static_cast<double>(rounds[i]) /
                                      static_cast<double>(rounds[0])
                                : share;

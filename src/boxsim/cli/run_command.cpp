@@ -209,9 +209,10 @@ void addRunCommand(CLI::App& app) {
                   "Turn on the random perturbation of fast collisions (damped, thesis §4.2) "
                   "with this seed; the seed is written into the output header");
   cmd->add_option("--threads", args->threads,
-                  "Threads of COLLIDE's loop (impulse, damped; default 1): the contacts of a "
-                  "pass run in dependency levels of the thesis' own order, so the trajectory is "
-                  "the same bit for bit for any number; written into the output header")
+                  "Threads of the passes (impulse, damped; default 1): COLLIDE's contacts in "
+                  "dependency levels of the thesis' own order, the fast pairs' narrow phases "
+                  "each into its own slot, so the trajectory is the same bit for bit for any "
+                  "number; written into the output header")
       ->check(CLI::Range(1, 1024));
   cmd->add_option("--dt", args->dt, "Time step, s")
       ->default_str(shortestText(args->dt))

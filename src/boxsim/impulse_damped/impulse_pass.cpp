@@ -3,7 +3,6 @@
 #include "boxsim/impulse_damped/impulse_pass.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -338,8 +337,7 @@ PassResult impulsePass(World& world, double dt, double restitution, GravityMode 
   const bool shared =
       (gathering.threads() > 1 || work) && levelsApply(world, contacts, gathering, beforeCollide) &&
       findLevels(world, contacts, gathering.parallelContacts(), gathering.collideLevels());
-  const auto start =
-      work ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
+  const auto start = ParallelWork::startOf(work);
   if (shared && gathering.threads() > 1) {
     gathering.countLevelPass();
     collideInLevels(world, contacts, call, stable, touched, beforeCollide, totals, islands,
@@ -349,8 +347,7 @@ PassResult impulsePass(World& world, double dt, double restitution, GravityMode 
                    settling, result);
   }
   if (work && shared) {
-    work->levelSeconds +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    ParallelWork::addSince(work->levelSeconds, start);
     const std::vector<int>& levelStart = gathering.collideLevels().start;
     for (std::size_t l = 0; l + 1 < levelStart.size(); ++l)
       ParallelWork::countLoop(work->levelRounds, levelStart[l + 1] - levelStart[l]);

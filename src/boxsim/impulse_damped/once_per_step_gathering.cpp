@@ -3,7 +3,6 @@
 #include "boxsim/impulse_damped/once_per_step_gathering.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cstddef>
 #include <utility>
 
@@ -194,6 +193,7 @@ void OncePerStepGathering::gatherFastPairs(World& world, const Vec3& gravityStep
   fastContacts_.clear();
   fastTasks_.clear();
   fastTests_.clear();
+  ContactManifold tested;  // one thread: the narrow phase of the pair being gathered
   if (anyFast) {
     const std::vector<StepCandidates::Candidate>& candidates = candidates_.candidates();
     // Only pairs with a fast body at its predicted pose (planFastPair's precondition): most
@@ -202,7 +202,6 @@ void OncePerStepGathering::gatherFastPairs(World& world, const Vec3& gravityStep
     // planned first, so that the narrow phases can run together (testFastPairs). The same
     // operations in the same order for each pair, so the same bits.
     const bool inOrder = params_.threads < 2 && !work_;
-    if (inOrder && fastTested_.empty()) fastTested_.resize(1);
     FastPairTask task;
     for (std::size_t k = 0; k < candidates.size(); ++k) {
       if (!poses_.fastAtPredicted(candidates[k].a) && !poses_.fastAtPredicted(candidates[k].b))
@@ -216,13 +215,16 @@ void OncePerStepGathering::gatherFastPairs(World& world, const Vec3& gravityStep
         fastTasks_.push_back(task);
         continue;
       }
-      if (task.test >= 0) task.touching = candidateManifold(world, task, margin, fastTested_[0]);
-      finishFastPair(world, task, normals);
+      if (task.test >= 0) task.touching = candidateManifold(world, task, margin, tested);
+      finishFastPair(world, task, tested, normals);
     }
   }
   if (!fastTasks_.empty()) {
     testFastPairs(world, margin);
-    for (const FastPairTask& task : fastTasks_) finishFastPair(world, task, normals);
+    for (const FastPairTask& task : fastTasks_)
+      finishFastPair(world, task,
+                     task.test >= 0 ? fastTested_[static_cast<std::size_t>(task.test)] : tested,
+                     normals);
   }
   // The pairs grow() added come after the sweep's: into the (a, b) order.
   if (candidates_.grown())
@@ -298,8 +300,7 @@ void OncePerStepGathering::testFastPairs(const World& world, double margin) {
   // Each test reads the poses planFastPair left and writes its own candidate and slot: in any
   // order and on any thread, the same bits.
   const bool shared = tests > 0 && tests >= params_.parallelNarrowPhases;
-  const auto start =
-      work_ ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
+  const auto start = ParallelWork::startOf(work_);
   if (params_.threads > 1 && shared) {
     parallelFor(tests, params_.threads, test);
     ++parallelTestPasses_;
@@ -307,13 +308,13 @@ void OncePerStepGathering::testFastPairs(const World& world, double margin) {
     for (int t = 0; t < tests; ++t) test(t);
   }
   if (work_ && shared) {
-    work_->testSeconds +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    ParallelWork::addSince(work_->testSeconds, start);
     ParallelWork::countLoop(work_->testRounds, tests);
   }
 }
 
 void OncePerStepGathering::finishFastPair(World& world, const FastPairTask& task,
+                                          const ContactManifold& tested,
                                           ContactNormalTracker& normals) {
   StepCandidates::Candidate& candidate = candidates_.candidates()[static_cast<std::size_t>(task.k)];
   const int a = candidate.a, b = candidate.b;
@@ -337,14 +338,13 @@ void OncePerStepGathering::finishFastPair(World& world, const FastPairTask& task
     candidate.manifold = -1;
     return;
   }
-  const ContactManifold& m = fastTested_[static_cast<std::size_t>(task.test)];
   if (candidate.manifold < 0) {
     candidate.manifold = static_cast<int>(manifolds_.size());
-    manifolds_.push_back(m);
+    manifolds_.push_back(tested);
   } else {
-    manifolds_[static_cast<std::size_t>(candidate.manifold)] = m;
+    manifolds_[static_cast<std::size_t>(candidate.manifold)] = tested;
   }
-  addContact(m);
+  addContact(tested);
 }
 
 bool OncePerStepGathering::candidateManifold(const World& world, FastPairTask& task,

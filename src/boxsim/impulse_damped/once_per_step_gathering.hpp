@@ -195,9 +195,11 @@ class OncePerStepGathering {
   /// threads when ImpulseParams::threads > 1 and there are ImpulseParams::parallelNarrowPhases
   /// of them.
   void testFastPairs(const World& world, double margin);
-  /// The rest of a listed pair, in the planned order: its manifold kept, both bodies moved to
-  /// where the pass predicts them, and its contact into fastContacts_.
-  void finishFastPair(World& world, const FastPairTask& task, ContactNormalTracker& normals);
+  /// The rest of a listed pair, in the planned order: its manifold kept (`tested`, the narrow
+  /// phase's, when it had one), both bodies moved to where the pass predicts them, and its
+  /// contact into fastContacts_.
+  void finishFastPair(World& world, const FastPairTask& task, const ContactManifold& tested,
+                      ContactNormalTracker& normals);
   /// The narrow phase of the task's candidate where its bodies stand in the pass, trying its
   /// last separating axis first and remembering the axis of this test; false (manifold left as
   /// it was) when they do not touch within the margin. Writes only the candidate, the task and

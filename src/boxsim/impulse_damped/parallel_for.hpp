@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <chrono>
 #include <cstddef>
 #include <functional>
 
@@ -25,16 +26,27 @@ void parallelFor(int count, int threads, const std::function<void(int)>& item);
 /// a loop of n items in ceil(n / N) rounds, so a kind's time on N threads, if every item cost
 /// the same and the threads met for free, is its time on one times rounds[N] / rounds[1].
 struct ParallelWork {
+  using Clock = std::chrono::steady_clock;  ///< the clock the loops are timed with
   /// The thread counts the rounds are counted for.
   static constexpr std::array<int, 5> threadCounts = {1, 2, 8, 16, 64};
+  /// Rounds per thread count (threadCounts[i]).
+  using Rounds = std::array<long, threadCounts.size()>;
   double testSeconds = 0.0;   ///< s, in the shared loops of narrow phases
   double levelSeconds = 0.0;  ///< s, in COLLIDE's loops of the shared passes
-  std::array<long, 5> testRounds{};   ///< per threadCounts[i]: rounds of the narrow phases
-  std::array<long, 5> levelRounds{};  ///< per threadCounts[i]: rounds of COLLIDE's levels
+  Rounds testRounds{};        ///< rounds of the narrow phases
+  Rounds levelRounds{};       ///< rounds of COLLIDE's levels
   /// Counts a loop of n items into `rounds`.
-  static void countLoop(std::array<long, 5>& rounds, long n) {
+  static void countLoop(Rounds& rounds, long n) {
     for (std::size_t i = 0; i < threadCounts.size(); ++i)
       rounds[i] += (n + threadCounts[i] - 1) / threadCounts[i];
+  }
+  /// When a loop measured into `work` starts: now, or (null: nothing measured) no clock read.
+  static Clock::time_point startOf(const ParallelWork* work) {
+    return work ? Clock::now() : Clock::time_point{};
+  }
+  /// Adds the time since `start` (startOf) to `seconds`.
+  static void addSince(double& seconds, Clock::time_point start) {
+    seconds += std::chrono::duration<double>(Clock::now() - start).count();
   }
 };
 
