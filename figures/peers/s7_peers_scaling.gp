@@ -1,7 +1,7 @@
 # Side by side with Bullet and ODE: mean ms per step against the number of unit cubes in the
 # clump of Fig. 6.7 (cubes flying towards its centre, falling onto the ground and piling up)
 # at restitution 0, log-log, for boxsim's damped integration (as the thesis, with friction,
-# with chatter detection) and every peer engine the harness was built with. Points: the mean
+# with chatter detection, on two threads) and every peer engine the harness was built with. Points: the mean
 # step over every repetition; error bars: the range of the repetitions' means; dashed: the
 # 95th percentile. The grey dashed guide grows as n from the damped mean at 100 cubes; the
 # dotted line is real time at 60 Hz (16.7 ms).
@@ -22,7 +22,7 @@ do for [kind in "png svg"] {
   if (kind eq "png") { set terminal pngcairo size 1100,580 enhanced font "DejaVu Sans,11" }
   else { set terminal svg size 1100,580 enhanced font "DejaVu Sans,11" }
   set output outdir.'/s7_peers_scaling.'.kind
-  set title sprintf("Clump of n unit cubes, restitution 0, Δt = 1/60 s, one thread: ms per step over %s s\n{/*0.8 measured %s at %s}", seconds, stamp, commit)
+  set title sprintf("Clump of n unit cubes, restitution 0, Δt = 1/60 s, one thread unless marked: ms per step over %s s\n{/*0.8 measured %s at %s}", seconds, stamp, commit)
   set grid
   set logscale xy
   set xrange [80:12500]
