@@ -206,6 +206,41 @@ TEST_CASE("findContacts and firstIntersectingPair give identical results with bo
   CHECK(sameContacts(findContacts(clump), reference));
 }
 
+TEST_CASE("The grid finds the bodies wider than its cells: a dense clump with a tenth stretched",
+          "[collision][broad_phase]") {
+  // The grid's cells are sized for all but the widest bodies (kGridCellQuantile); the others
+  // look up every cell they reach. A collapsed 1000-cube clump whose every tenth body's bounds
+  // are stretched by up to 1.5 m, as a fast body's swept bounds are, and every 13th body
+  // immovable, as sleepers stand in: the same pairs as the all-pairs test.
+  testing::SeededRandom random(1203);
+  World world = collapsedClump(1000, 1.0);
+  const std::size_t n = world.bodies.size();
+  for (std::size_t i = 1; i < n; i += 13) world.bodies[i].immovable = true;
+  std::vector<Vec3> lo(n), hi(n);
+  int stretched = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    obbBounds(Obb::of(world.bodies[i]), 0.0, lo[i], hi[i]);
+    if (i == 0) continue;  // the ground stays as it is
+    if (i % 10 != 3) continue;
+    const Vec3 shift = random.vector(-1.5, 1.5);
+    lo[i] = lo[i].cwiseMin(lo[i] + shift);
+    hi[i] = hi[i].cwiseMax(hi[i] + shift);
+    ++stretched;
+  }
+  CHECK(stretched >= 100);
+  for (double margin : {0.0, 0.05}) {
+    Pairs reference;
+    for (int i = 0; i < static_cast<int>(n); ++i)
+      for (int j = i + 1; j < static_cast<int>(n); ++j)
+        if (!(world.bodies[i].immovable && world.bodies[j].immovable) &&
+            boundsWithin(lo[i], hi[i], lo[j], hi[j], margin))
+          reference.emplace_back(i, j);
+    INFO("margin " << margin);
+    CHECK(reference.size() > 5000);  // dense: every body has neighbours
+    CHECK(sweepAndPrunePairs(world, lo, hi, margin) == reference);
+  }
+}
+
 TEST_CASE("refindContacts after some bodies moved equals findContacts, manifold for manifold",
           "[collision][broad_phase]") {
   testing::SeededRandom random(2024);

@@ -36,9 +36,12 @@ namespace boxsim {
 ///
 /// From 64 swept bodies on, a uniform grid takes the sweep's place when it is dense enough
 /// (at most 8 cells per body): each body goes into the cell of the lower corner of its bounds,
-/// cells are as wide as the largest gridded bounds plus the margin, and each cell is compared
-/// with itself and its 13 following neighbours. Bodies more than 4 times the median extent
-/// are tested directly instead, so a few large boxes do not coarsen the grid.
+/// cells are as wide as the gridded bounds plus the margin, and each cell is compared with
+/// itself and its 13 following neighbours. The cells are sized for 95 % of the bodies: the
+/// widest 5 % (a fast body's swept bounds) look into every cell they can reach and are swept
+/// among themselves, so a few wide bounds do not make every cell wide (the collapsing clump of
+/// 10 000 cubes: 14 % fewer instructions than cells sized for the widest). Bodies more than 4
+/// times the median extent are tested directly, against every body.
 ///
 /// Complexity: O(n log n + s + m n + k) time and O(n + k) memory for n bodies, m of them
 /// tested directly, k reported pairs and s >= k pairs of movable bodies that overlap along the
