@@ -112,7 +112,14 @@ bool SlowPairCache::predictedContact(const World& world, const CachedPair& pair,
     ++kept;
   }
   if (kept == 0) return false;
-  contact = pair.contact;
+  // The cached contact's bodies, normal and friction; the rest is this pass' (a frictionless
+  // contact's patch stays empty, its offsets unread).
+  contact.a = pair.contact.a;
+  contact.b = pair.contact.b;
+  contact.normal = pair.contact.normal;
+  contact.friction = pair.contact.friction;
+  contact.patch.count = 0;
+  contact.patch.radius = pair.contact.patch.radius;
   contact.point = sum / static_cast<double>(kept);
   if (!contact.friction.frictionless()) {
     // The friction patch is the kept points, about the new centroid, in the order around the
