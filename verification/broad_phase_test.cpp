@@ -96,6 +96,20 @@ World withBroadPhase(World world, BroadPhase kind) {
   return world;
 }
 
+/// The reference for bounds given: every pair i < j, not both immovable, whose bounds pass
+/// boundsWithin(margin), by the plain double loop.
+Pairs pairsWithin(const World& world, const std::vector<Vec3>& lo, const std::vector<Vec3>& hi,
+                  double margin) {
+  Pairs pairs;
+  const int n = static_cast<int>(world.bodies.size());
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j)
+      if (!(world.bodies[i].immovable && world.bodies[j].immovable) &&
+          boundsWithin(lo[i], hi[i], lo[j], hi[j], margin))
+        pairs.emplace_back(i, j);
+  return pairs;
+}
+
 /// The clump of \thesis{Fig. 6.7} after every cube has moved for t seconds at its initial
 /// velocity: by t = 0.5 s neighbours overlap, and they keep overlapping more after that.
 World collapsedClump(int count, double t) {
@@ -229,12 +243,7 @@ TEST_CASE("The grid finds the bodies wider than its cells: a dense clump with a 
   }
   CHECK(stretched >= 100);
   for (double margin : {0.0, 0.05}) {
-    Pairs reference;
-    for (int i = 0; i < static_cast<int>(n); ++i)
-      for (int j = i + 1; j < static_cast<int>(n); ++j)
-        if (!(world.bodies[i].immovable && world.bodies[j].immovable) &&
-            boundsWithin(lo[i], hi[i], lo[j], hi[j], margin))
-          reference.emplace_back(i, j);
+    const Pairs reference = pairsWithin(world, lo, hi, margin);
     INFO("margin " << margin);
     CHECK(reference.size() > 5000);  // dense: every body has neighbours
     CHECK(sweepAndPrunePairs(world, lo, hi, margin) == reference);
@@ -290,12 +299,7 @@ TEST_CASE("Both broad phases over given bounds equal the all-pairs test on those
       lo[i] = lo[i].cwiseMin(lo[i] + shift);
       hi[i] = hi[i].cwiseMax(hi[i] + shift);
     }
-    Pairs reference;
-    for (int i = 0; i < static_cast<int>(n); ++i)
-      for (int j = i + 1; j < static_cast<int>(n); ++j)
-        if (!(world.bodies[i].immovable && world.bodies[j].immovable) &&
-            boundsWithin(lo[i], hi[i], lo[j], hi[j], 0.01))
-          reference.emplace_back(i, j);
+    const Pairs reference = pairsWithin(world, lo, hi, 0.01);
     INFO("scene " << scene);
     CHECK(sweepAndPrunePairs(world, lo, hi, 0.01) == reference);
     // The world's choice of broad phase over the same bounds: both kinds, the same list.

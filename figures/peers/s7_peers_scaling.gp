@@ -1,9 +1,9 @@
 # Side by side with Bullet and ODE: mean ms per step against the number of unit cubes in the
 # clump of Fig. 6.7 (cubes flying towards its centre, falling onto the ground and piling up)
 # at restitution 0, log-log, for boxsim's damped integration (as the thesis, with friction,
-# with chatter detection, on two threads) and every peer engine the harness was built with. Points: the mean
-# step over every repetition; error bars: the range of the repetitions' means; dashed: the
-# 95th percentile. The grey dashed guide grows as n from the damped mean at 100 cubes; the
+# with chatter detection, on two threads) and every peer engine the harness was built with.
+# Points: the mean step over every repetition; error bars: the range of the repetitions' means;
+# dashed: the 95th percentile. The grey dashed guide grows as n from the damped mean at 100 cubes; the
 # dotted line is real time at 60 Hz (16.7 ms).
 # Data: s7_peers_scaling.dat, written by boxsim_peers (rows: boxes "engine" mean_ms median_ms
 # p95_ms rep_min_ms rep_max_ms seconds).

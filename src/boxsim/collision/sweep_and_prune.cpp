@@ -203,11 +203,13 @@ bool buildGrid(const std::vector<Vec3>& lo, const std::vector<Vec3>& hi,
   sorted.assign(extent.begin(), extent.end());
   std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(sorted.size() / 2), sorted.end());
   const double median = sorted[sorted.size() / 2];
-  const std::size_t q = static_cast<std::size_t>(kGridCellQuantile * static_cast<double>(sorted.size() - 1));
+  const std::size_t q =
+      static_cast<std::size_t>(kGridCellQuantile * static_cast<double>(sorted.size() - 1));
   std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(q), sorted.end());
   const double quantile = sorted[q];
   // Cells for the bodies up to the quantile, the wider ones looked up; if that grid would be
   // too fine for the scene, cells for every gridded body as wide as the widest.
+  double cells = 1.0;
   for (const bool lookUpWide : {true, false}) {
     std::vector<int>& gridded = grid.gridded;
     std::vector<int>& wide = grid.wide;
@@ -233,7 +235,7 @@ bool buildGrid(const std::vector<Vec3>& lo, const std::vector<Vec3>& hi,
     // pair whose lower corners are a hair less than h apart must never land two cells apart.
     grid.h = (largest + margin) * (1.0 + 1e-6) + 1e-9 * scale + 1e-300;
     grid.origin = lowest;
-    double cells = 1.0;
+    cells = 1.0;
     for (int k = 0; k < 3; ++k) {
       const double d = std::floor((highest[k] - lowest[k]) / grid.h) + 1.0;
       cells *= d;
@@ -243,7 +245,6 @@ bool buildGrid(const std::vector<Vec3>& lo, const std::vector<Vec3>& hi,
     if (!lookUpWide) return false;
   }
   const std::vector<int>& gridded = grid.gridded;
-  const double cells = static_cast<double>(grid.dims.x()) * grid.dims.y() * grid.dims.z();
 
   for (std::size_t k = 0; k < swept.size(); ++k)
     if (extent[k] > kGridSizeRatio * median) {
@@ -307,7 +308,8 @@ void widePairs(const World& world, const std::vector<Vec3>& lo, const std::vecto
           }
         }
   }
-  // The wide bodies among themselves: too many to pair each with each (a tenth of the bodies).
+  // The wide bodies among themselves: too many to pair each with each (a twentieth of the
+  // bodies), so swept.
   sweepPairs(world, lo, hi, grid.wide, margin, pairs, grid.wideIntervals, grid.wideLo,
              grid.wideHi);
 }
