@@ -176,14 +176,15 @@ struct EdgeOverlap {
 };
 
 /// Edge-edge axis L = a_i x b_j with its overlap, absCEdge(r, c) being |C_rc| + absCEpsilon and
-/// D = centre of B - centre of A (m). Shared by the full test and separatedBeyond.
-template <class AbsCEdge>
-EdgeOverlap edgeOverlap(const Obb& a, const Obb& b, const Vec3& D, const AbsCEdge& absCEdge,
-                        int i, int j) {
+/// D = centre of B - centre of A (m). Shared by the full test and separatedBeyond. The indices
+/// are template arguments, so every index below is a constant: the index arithmetic costs
+/// more than the axis' own.
+template <int i, int j, class AbsCEdge>
+EdgeOverlap edgeOverlap(const Obb& a, const Obb& b, const Vec3& D, const AbsCEdge& absCEdge) {
   const Vec3& ea = a.halfExtents;
   const Vec3& eb = b.halfExtents;
-  const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
-  const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+  constexpr int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+  constexpr int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
   EdgeOverlap e;
   // The cross product in world space: the swapped call computes b_j x a_i, the exact
   // negation, so |L| and |L . D| agree bit for bit.
@@ -194,6 +195,23 @@ EdgeOverlap edgeOverlap(const Obb& a, const Obb& b, const Vec3& D, const AbsCEdg
   // Eberly's unnormalised separation; dividing by |L| turns it into metres.
   e.overlap = (rA + rB) - std::abs(e.dist);
   return e;
+}
+
+/// edgeOverlap for indices known only at run time (0..2 each).
+template <class AbsCEdge>
+EdgeOverlap edgeOverlap(const Obb& a, const Obb& b, const Vec3& D, const AbsCEdge& absCEdge,
+                        int i, int j) {
+  switch (3 * i + j) {
+    case 0: return edgeOverlap<0, 0>(a, b, D, absCEdge);
+    case 1: return edgeOverlap<0, 1>(a, b, D, absCEdge);
+    case 2: return edgeOverlap<0, 2>(a, b, D, absCEdge);
+    case 3: return edgeOverlap<1, 0>(a, b, D, absCEdge);
+    case 4: return edgeOverlap<1, 1>(a, b, D, absCEdge);
+    case 5: return edgeOverlap<1, 2>(a, b, D, absCEdge);
+    case 6: return edgeOverlap<2, 0>(a, b, D, absCEdge);
+    case 7: return edgeOverlap<2, 1>(a, b, D, absCEdge);
+    default: return edgeOverlap<2, 2>(a, b, D, absCEdge);
+  }
 }
 
 /// The depths of the six face axes (Eberly's table of the 15 tests, rows L = A_i, L = B_j).
