@@ -158,8 +158,9 @@ void buildRows(FrictionRows& rows, const RigidBody& a, const RigidBody& b, const
   for (int i = 2; i < 5; ++i)
     if (rows.Ga.col(i).isZero(0.0)) W(i, i) = 1.0;  // a row left out: its impulse stays 0
   // W is symmetric positive definite (a pair's inverse mass restricted to independent rows).
-  rows.llt.compute(W);
-  rows.factorised = rows.llt.info() == Eigen::Success;
+  // Eigen's own in-place Cholesky, the routine Eigen::LLT::compute runs on its copy of W.
+  rows.L = W;
+  rows.factorised = Eigen::internal::llt_inplace<double, Eigen::Lower>::blocked(rows.L) == -1;
   rows.normW = W.norm();
   rows.tippingFactorised = false;
 }
@@ -246,7 +247,11 @@ void applyPatchFriction(RigidBody& a, RigidBody& b, const Vec3& ra, const Vec3& 
       t2.dot(sum.couple);
   // Sticking: the sums that stop every row.
   if (!rows.factorised) return;
-  Vec5 total = before - rows.llt.solve(slip);
+  // W⁻¹ slip as Eigen::LLT::solve forms it: L y = slip, then Lᵀ x = y.
+  Vec5 stop = slip;
+  rows.L.triangularView<Eigen::Lower>().solveInPlace(stop);
+  rows.L.adjoint().triangularView<Eigen::Upper>().solveInPlace(stop);
+  Vec5 total = before - stop;
   if (!total.allFinite()) return;
   // Coulomb: (J_t, τ / ρ) within μs N, else on the ellipse of μd N.
   const double N = sum.normal;

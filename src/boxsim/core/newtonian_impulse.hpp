@@ -110,8 +110,10 @@ struct FrictionRows {
   Mat35 Ga = Mat35::Zero();          ///< angular Jacobian of the rows on a (columns: rows)
   Mat35 Gb = Mat35::Zero();          ///< angular Jacobian of the rows on b
   Mat5 W = Mat5::Zero();             ///< the pair's inverse mass in the rows
-  Eigen::LLT<Mat5> llt;              ///< W factorised
-  bool factorised = false;           ///< llt succeeded
+  /// W factorised, W = L Lᵀ, L in the lower triangle (the upper one holds W's): the factor
+  /// Eigen::LLT computes, without its copy of W and the L1 norm only its rcond() reads.
+  Mat5 L = Mat5::Zero();
+  bool factorised = false;           ///< the factorisation succeeded (W positive definite)
   double normW = 0.0;                ///< W.norm(), the scale of the energy guard
   /// The tipping rows' own block of W factorised (the couple that stops the tipping under
   /// sliding friction), formed on first use.
