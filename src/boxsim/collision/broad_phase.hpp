@@ -38,6 +38,18 @@ BroadPhase parseBroadPhase(const std::string& name);
 /// face of the bounds touches a corner of the box when margin = 0.
 void obbBounds(const Obb& box, double margin, Vec3& lo, Vec3& hi);
 
+/// The half widths of a box's bounds along the world axes, |R| h (m): what obbBounds adds to
+/// the margin.
+inline Vec3 obbReach(const Obb& box) { return box.axes.cwiseAbs() * box.halfExtents; }
+
+/// obbBounds of a box with centre `center` (m) and obbReach `reach` (m), grown by margin (m):
+/// the same bits, for a caller that keeps the reach of a box it bounds with several margins.
+inline void boundsAbout(const Vec3& center, const Vec3& reach, double margin, Vec3& lo, Vec3& hi) {
+  const Vec3 grown = reach + Vec3::Constant(margin);
+  lo = center - grown;
+  hi = center + grown;
+}
+
 /// True when bounds [loA, hiA] and [loB, hiB] (m) are at most margin (m) apart along every
 /// world axis; touching bounds (gap 0) count, so a box resting exactly on the ground is found
 /// with margin 0. Symmetric in A and B. The one test both broad phases apply to a pair, which

@@ -27,9 +27,10 @@ int SlowPairCache::add(const World& world, const StepBodies& bodies, int i, int 
   const RigidBody& bodyJ = world.bodies[j];
   const double wideningI = bodyI.immovable ? 0.0 : slowWidening * bodyI.halfExtents.minCoeff();
   const double wideningJ = bodyJ.immovable ? 0.0 : slowWidening * bodyJ.halfExtents.minCoeff();
+  // The bounds obbBounds gives, from the reach the step's bodies keep.
   Vec3 loI, hiI, loJ, hiJ;
-  obbBounds(Obb::of(bodyI), wideningI, loI, hiI);
-  obbBounds(Obb::of(bodyJ), wideningJ, loJ, hiJ);
+  boundsAbout(bodyI.s.x, bodies.reach[i], wideningI, loI, hiI);
+  boundsAbout(bodyJ.s.x, bodies.reach[j], wideningJ, loJ, hiJ);
   if (!boundsWithin(loI, hiI, loJ, hiJ, margin)) return -1;
   const double pairMargin = margin + wideningI + wideningJ;
   ContactManifold m = kept.collide(i, Obb::of(bodyI), j, Obb::of(bodyJ), pairMargin);
@@ -44,7 +45,12 @@ int SlowPairCache::add(const World& world, const StepBodies& bodies, int i, int 
   const Vec3& xa = bodyI.s.x;
   const Vec3& xb = bodyJ.s.x;
   // The normal model's choice now; its face is remembered only in the passes the pair touches.
-  CachedPair pair{normals.contactOf(world, m, false), m, {}, 0, false};
+  // Made in place: a cached pair is about a kilobyte.
+  CachedPair& pair = pairs_.emplace_back();
+  pair.contact = normals.contactOf(world, m, false);
+  pair.manifold = m;
+  pair.count = 0;
+  pair.remembered = false;
   PairReach reach{i, j, 0};
   for (int k = 0; k < m.count; ++k) {
     const ContactPoint& p = m.points[k];
@@ -57,7 +63,6 @@ int SlowPairCache::add(const World& world, const StepBodies& bodies, int i, int 
     reach.leverB = std::max(reach.leverB, rb.norm());
   }
   reach.count = pair.count;
-  pairs_.push_back(pair);
   reaches_.push_back(reach);
   return static_cast<int>(pairs_.size()) - 1;
 }

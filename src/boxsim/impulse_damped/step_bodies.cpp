@@ -13,6 +13,7 @@ void StepBodies::build(const World& world, const Vec3& gravityStep, double dt, d
   if (fast.size() != n) fast.assign(n, 0);
   lo.resize(n);
   hi.resize(n);
+  reach.resize(n);
   halfDiagonal.resize(n);
   slowReach.resize(n);
   passVelocity.resize(n);
@@ -20,7 +21,8 @@ void StepBodies::build(const World& world, const Vec3& gravityStep, double dt, d
   passSpin.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const RigidBody& body = world.bodies[i];
-    obbBounds(Obb::of(body), 0.0, lo[i], hi[i]);
+    reach[i] = obbReach(Obb::of(body));
+    boundsAbout(body.s.x, reach[i], 0.0, lo[i], hi[i]);
     immovable[i] = static_cast<char>(body.immovable);
     halfDiagonal[i] = body.halfExtents.norm();
     slowReach[i] = exactReach * body.halfExtents.minCoeff();

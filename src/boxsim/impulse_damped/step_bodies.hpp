@@ -39,6 +39,7 @@ struct StepBodies {
   std::vector<double> slowReach;     ///< m, ImpulseParams::exactReach ℓ: the slow bodies' bar
   std::vector<Vec3> lo;              ///< m, lower corners of the bounds at the current poses
   std::vector<Vec3> hi;              ///< m, upper corners of those bounds (obbBounds, margin 0)
+  std::vector<Vec3> reach;           ///< m, the half widths of those bounds (obbReach)
   std::vector<Vec3> passVelocity;    ///< m/s, v' of this pass: v + g Δt when movable
   std::vector<double> passTurn;      ///< m, Δt |ω| ρ of this pass
   std::vector<double> passSpin;      ///< rad/s, |ω| of this pass
