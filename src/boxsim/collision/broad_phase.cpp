@@ -23,8 +23,6 @@ BroadPhase parseBroadPhase(const std::string& name) {
 }
 
 void obbBounds(const Obb& box, double margin, Vec3& lo, Vec3& hi) {
-  // The box's reach along world axis k is sum_i |R_ki| h_i: each of its own axes contributes
-  // its half extent times how far that axis leans along k.
   boundsAbout(box.center, obbReach(box), margin, lo, hi);
 }
 

@@ -39,7 +39,8 @@ BroadPhase parseBroadPhase(const std::string& name);
 void obbBounds(const Obb& box, double margin, Vec3& lo, Vec3& hi);
 
 /// The half widths of a box's bounds along the world axes, |R| h (m): what obbBounds adds to
-/// the margin.
+/// the margin. Along world axis k it is sum_i |R_ki| h_i: each of the box's own axes
+/// contributes its half extent times how far that axis leans along k.
 inline Vec3 obbReach(const Obb& box) { return box.axes.cwiseAbs() * box.halfExtents; }
 
 /// obbBounds of a box with centre `center` (m) and obbReach `reach` (m), grown by margin (m):

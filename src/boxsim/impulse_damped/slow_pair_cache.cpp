@@ -49,8 +49,6 @@ int SlowPairCache::add(const World& world, const StepBodies& bodies, int i, int 
   CachedPair& pair = pairs_.emplace_back();
   pair.contact = normals.contactOf(world, m, false);
   pair.manifold = m;
-  pair.count = 0;
-  pair.remembered = false;
   PairReach reach{i, j, 0};
   for (int k = 0; k < m.count; ++k) {
     const ContactPoint& p = m.points[k];

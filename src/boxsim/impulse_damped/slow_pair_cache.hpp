@@ -92,8 +92,8 @@ class SlowPairCache {
     /// measured in; its kind and normal name the face the normal model remembers).
     ContactManifold manifold;
     std::array<CachedPoint, 4> points;
-    int count;
-    bool remembered;  ///< its face was handed to the normal model since it last was fast
+    int count = 0;
+    bool remembered = false;  ///< its face was handed to the normal model since it last was fast
     /// A pair with no point to predict from (count 0) gets the narrow phase where its slow
     /// bodies stand, the same in every pass of the step: its manifold, found in the first pass
     /// that needs it (index into exactManifolds_), or kExactUnknown.
