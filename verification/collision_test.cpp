@@ -248,6 +248,67 @@ TEST_CASE("The 15-axis depth agrees with brute-force corner projections on 1000 
   CHECK(separated > 100);
 }
 
+TEST_CASE("Leaving out the edge axes that lose to the face changes no bit of the answer",
+          "[collision][sat]") {
+  // SeparatingAxisParams::skipLosingEdgeAxes leaves most edge axes out, many of them from the
+  // face axes' numbers before their cross product is formed (a bound with a slack of 1e-9 |D|,
+  // covering rounding and axes orthonormal within 3e-10). Against the plain loop over all 15
+  // axes, every field must agree bit for bit, on pairs where the bound sits close to the bars:
+  // boxes resting flush, turned by up to 5 degrees, the one above the other by less than the
+  // tie width, far from the origin, on wide grounds, and with nearly parallel edges.
+  testing::SeededRandom random(20261127);
+  SeparatingAxisParams plain;
+  plain.skipLosingEdgeAxes = false;
+  const auto small = [&](double angle) {
+    return Mat3(Eigen::AngleAxisd(random.uniform(-angle, angle), random.vector(-1, 1).normalized())
+                    .toRotationMatrix());
+  };
+  int faces = 0, edges = 0, apart = 0;
+  for (int trial = 0; trial < 6000; ++trial) {
+    Obb a, b;
+    const int kind = trial % 6;
+    if (kind == 0) {  // anything
+      a = Obb{random.vector(-1, 1), random.rotation().toRotationMatrix(), random.vector(0.1, 1.0)};
+      b = Obb{random.vector(-1, 1), random.rotation().toRotationMatrix(), random.vector(0.1, 1.0)};
+    } else if (kind <= 3) {  // resting flush, a little turned, near and far from the origin
+      const Vec3 far = kind == 3 ? random.vector(-1e4, 1e4) : Vec3::Zero();
+      // Upright on the world axes, or the pair turned as a whole into any orientation.
+      const Mat3 base =
+          kind == 1 ? Mat3(Mat3::Identity()) : Mat3(random.rotation().toRotationMatrix());
+      a = Obb{far, base * small(kind == 1 ? 1e-9 : 0.09), Vec3(0.5, 0.5, 0.5)};
+      const double gap = random.uniform(-2e-3, 2e-3) * (trial % 12 < 6 ? 1.0 : 1e-7);
+      b = Obb{Vec3(far + base * Vec3(random.uniform(-0.6, 0.6), 1.0 + gap, random.uniform(-0.6, 0.6))),
+              base * small(kind == 1 ? 1e-9 : 0.09), Vec3(0.5, 0.5, 0.5)};
+    } else if (kind == 4) {  // a box on a wide ground, far from its centre
+      a = Obb{Vec3(0, -0.5, 0), Mat3::Identity(), Vec3(150, 0.5, 150)};
+      b = Obb{Vec3(random.uniform(-149, 149), 0.5 + random.uniform(-1e-3, 1e-3),
+                   random.uniform(-149, 149)),
+              small(0.05), random.vector(0.2, 1.0)};
+    } else {  // nearly parallel edges: one box turned from the other by 1e-8 to 1e-3 rad
+      const Mat3 axes = random.rotation().toRotationMatrix();
+      a = Obb{random.vector(-1, 1), axes, random.vector(0.1, 1.0)};
+      b = Obb{Vec3(a.center + random.vector(-1.5, 1.5)),
+              Mat3(small(std::pow(10.0, random.uniform(-8, -3))) * axes), random.vector(0.1, 1.0)};
+    }
+    const SeparatingAxisResult fast = separatingAxisTest(a, b);
+    const SeparatingAxisResult all = separatingAxisTest(a, b, plain);
+    INFO("trial " << trial << " kind " << kind << " depth " << all.depth);
+    REQUIRE(sameBits(fast.depth, all.depth));
+    REQUIRE(sameBits(fast.normal, all.normal));
+    REQUIRE(fast.kind == all.kind);
+    REQUIRE(fast.indexA == all.indexA);
+    REQUIRE(fast.indexB == all.indexB);
+    REQUIRE(fast.intersecting == all.intersecting);
+    if (!all.intersecting) ++apart;
+    else if (all.kind == AxisKind::EdgeEdge) ++edges;
+    else ++faces;
+  }
+  // Every kind of answer was compared, resting face contacts most of all.
+  CHECK(faces > 2000);
+  CHECK(edges > 50);
+  CHECK(apart > 500);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Contact manifolds with closed-form answers
 // ---------------------------------------------------------------------------------------------

@@ -197,6 +197,45 @@ EdgeOverlap edgeOverlap(const Obb& a, const Obb& b, const Vec3& D, const AbsCEdg
   return e;
 }
 
+/// A lower bound (m times |L|) of edgeOverlap<i, j>'s overlap from what the face axes already
+/// hold, without the cross product: in A's frame L = a_i x b_j is C(i1, j) a_i2 - C(i2, j) a_i1,
+/// so L . D = C(i1, j) (a_i2 . D) - C(i2, j) (a_i1 . D), with C_ij = a_i . b_j and distA the face
+/// axes of A's a_k . D. The radii rA and rB are edgeOverlap's own expressions, bit for bit; only
+/// |L . D| is formed another way, and `slack` (m) covers how far the two forms can differ: their
+/// rounding (about 20 ulp of |D|) and the axes' departure from orthonormal (3 δ |D| for columns
+/// orthonormal within δ).
+template <int i, int j, class AbsCEdge>
+double edgeOverlapAtLeast(const Obb& a, const Obb& b, const Mat3& C,
+                          const std::array<double, 6>& dist, const AbsCEdge& absCEdge,
+                          double slack) {
+  const Vec3& ea = a.halfExtents;
+  const Vec3& eb = b.halfExtents;
+  constexpr int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+  constexpr int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+  const double rA = ea[i1] * absCEdge(i2, j) + ea[i2] * absCEdge(i1, j);
+  const double rB = eb[j1] * absCEdge(i, j2) + eb[j2] * absCEdge(i, j1);
+  const double distL = C(i1, j) * dist[i2] - C(i2, j) * dist[i1];
+  return ((rA + rB) - std::abs(distL)) - slack;
+}
+
+/// edgeOverlapAtLeast for indices known only at run time (0..2 each).
+template <class AbsCEdge>
+double edgeOverlapAtLeast(const Obb& a, const Obb& b, const Mat3& C,
+                          const std::array<double, 6>& dist, const AbsCEdge& absCEdge, double slack,
+                          int i, int j) {
+  switch (3 * i + j) {
+    case 0: return edgeOverlapAtLeast<0, 0>(a, b, C, dist, absCEdge, slack);
+    case 1: return edgeOverlapAtLeast<0, 1>(a, b, C, dist, absCEdge, slack);
+    case 2: return edgeOverlapAtLeast<0, 2>(a, b, C, dist, absCEdge, slack);
+    case 3: return edgeOverlapAtLeast<1, 0>(a, b, C, dist, absCEdge, slack);
+    case 4: return edgeOverlapAtLeast<1, 1>(a, b, C, dist, absCEdge, slack);
+    case 5: return edgeOverlapAtLeast<1, 2>(a, b, C, dist, absCEdge, slack);
+    case 6: return edgeOverlapAtLeast<2, 0>(a, b, C, dist, absCEdge, slack);
+    case 7: return edgeOverlapAtLeast<2, 1>(a, b, C, dist, absCEdge, slack);
+    default: return edgeOverlapAtLeast<2, 2>(a, b, C, dist, absCEdge, slack);
+  }
+}
+
 /// edgeOverlap for indices known only at run time (0..2 each).
 template <class AbsCEdge>
 EdgeOverlap edgeOverlap(const Obb& a, const Obb& b, const Vec3& D, const AbsCEdge& absCEdge,
@@ -262,16 +301,29 @@ AxisCandidate bestFace(const Obb& a, const Obb& b, const FaceDepths& faces, doub
 /// then the edge indices (betterEdge). absCEdge is |C| + absCEpsilon, D = centre of B - centre
 /// of A (m). Axes shorter than parallelCutoff are left out, and so are axes that provably lose
 /// to the best face, of depth faceDepth (m), under the bar edgeBar (m; see "Face or edge" in
-/// separatingAxisTest). Empty when no axis is left.
-std::optional<EdgeAxis> bestEdge(const Obb& a, const Obb& b, const Vec3& D, const Mat3& absCEdge,
-                                 double faceDepth, double edgeBar, double parallelCutoff) {
+/// separatingAxisTest) when `skipLosing` (SeparatingAxisParams::skipLosingEdgeAxes). Empty when
+/// no axis is left.
+std::optional<EdgeAxis> bestEdge(const Obb& a, const Obb& b, const Vec3& D, const Mat3& C,
+                                 const Mat3& absCEdge, const FaceDepths& faces, double faceDepth,
+                                 double edgeBar, double parallelCutoff, bool skipLosing) {
   std::optional<EdgeAxis> edge;
+  // The room edgeOverlapAtLeast needs: 1e-9 |D|_1 covers its rounding (~1e-15 |D|) and axes
+  // orthonormal within 3e-10, far looser than a normalised quaternion's matrix (~1e-16).
+  const double slack = 1e-9 * D.cwiseAbs().sum();
   // Unrolled, so every index below is a constant: the loop bookkeeping and the "% 3" cost
   // more than the arithmetic of an axis that is not divided out.
 #pragma GCC unroll 3
   for (int i = 0; i < 3; ++i) {
 #pragma GCC unroll 3
     for (int j = 0; j < 3; ++j) {
+      // First from the face axes' own numbers, without the axis' cross product: an overlap that
+      // is certainly at least both bars and positive is one the test below leaves out, or
+      // (|L|^2 rounded just above 1) one whose depth, over both bars, could not change the
+      // answer either (see below). Only axes after the first one evaluated, as below.
+      if (skipLosing && edge) {
+        const double atLeast = edgeOverlapAtLeast(a, b, C, faces.dist, absCEdge, slack, i, j);
+        if (atLeast > 0.0 && atLeast >= edgeBar && atLeast >= faceDepth) continue;
+      }
       const EdgeOverlap o = edgeOverlap(a, b, D, absCEdge, i, j);
       const double lengthSquared = o.L.squaredNorm();  // |L| = sqrt of this, as L.norm() does
 
@@ -285,7 +337,7 @@ std::optional<EdgeAxis> bestEdge(const Obb& a, const Obb& b, const Vec3& D, cons
       // axis to pass the cutoff is always evaluated, so the running best starts from the same
       // axis as in the plain loop, which keeps the answer the same even for NaN depths, which
       // win no comparison.
-      if (edge && lengthSquared <= 1.0 && o.overlap > 0.0 && o.overlap >= edgeBar &&
+      if (skipLosing && edge && lengthSquared <= 1.0 && o.overlap > 0.0 && o.overlap >= edgeBar &&
           o.overlap >= faceDepth)
         continue;
       const double length = std::sqrt(lengthSquared);
@@ -330,7 +382,8 @@ SeparatingAxisResult separatingAxisTest(const Obb& a, const Obb& b,
 
   // --- Edge-edge axes L = a_i x b_j ---
   const std::optional<EdgeAxis> edge =
-      bestEdge(a, b, D, absCEdge, face.depth, edgeBar, params.parallelCutoff);
+      bestEdge(a, b, D, C, absCEdge, faces, face.depth, edgeBar, params.parallelCutoff,
+               params.skipLosingEdgeAxes);
 
   // --- Face or edge ---
   const double leastDepth = edge ? std::min(faces.least, edge->depth) : faces.least;
