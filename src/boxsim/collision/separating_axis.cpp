@@ -301,11 +301,11 @@ AxisCandidate bestFace(const Obb& a, const Obb& b, const FaceDepths& faces, doub
 /// then the edge indices (betterEdge). absCEdge is |C| + absCEpsilon, D = centre of B - centre
 /// of A (m). Axes shorter than parallelCutoff are left out, and so are axes that provably lose
 /// to the best face, of depth faceDepth (m), under the bar edgeBar (m; see "Face or edge" in
-/// separatingAxisTest) when `skipLosing` (SeparatingAxisParams::skipLosingEdgeAxes). Empty when
+/// separatingAxisTest); NaN for both leaves none out (no comparison with NaN holds). Empty when
 /// no axis is left.
 std::optional<EdgeAxis> bestEdge(const Obb& a, const Obb& b, const Vec3& D, const Mat3& C,
                                  const Mat3& absCEdge, const FaceDepths& faces, double faceDepth,
-                                 double edgeBar, double parallelCutoff, bool skipLosing) {
+                                 double edgeBar, double parallelCutoff) {
   std::optional<EdgeAxis> edge;
   // The room edgeOverlapAtLeast needs: 1e-9 |D|_1 covers its rounding (~1e-15 |D|) and axes
   // orthonormal within 3e-10, far looser than a normalised quaternion's matrix (~1e-16).
@@ -320,7 +320,7 @@ std::optional<EdgeAxis> bestEdge(const Obb& a, const Obb& b, const Vec3& D, cons
       // is certainly at least both bars and positive is one the test below leaves out, or
       // (|L|^2 rounded just above 1) one whose depth, over both bars, could not change the
       // answer either (see below). Only axes after the first one evaluated, as below.
-      if (skipLosing && edge) {
+      if (edge) {
         const double atLeast = edgeOverlapAtLeast(a, b, C, faces.dist, absCEdge, slack, i, j);
         if (atLeast > 0.0 && atLeast >= edgeBar && atLeast >= faceDepth) continue;
       }
@@ -337,7 +337,7 @@ std::optional<EdgeAxis> bestEdge(const Obb& a, const Obb& b, const Vec3& D, cons
       // axis to pass the cutoff is always evaluated, so the running best starts from the same
       // axis as in the plain loop, which keeps the answer the same even for NaN depths, which
       // win no comparison.
-      if (skipLosing && edge && lengthSquared <= 1.0 && o.overlap > 0.0 && o.overlap >= edgeBar &&
+      if (edge && lengthSquared <= 1.0 && o.overlap > 0.0 && o.overlap >= edgeBar &&
           o.overlap >= faceDepth)
         continue;
       const double length = std::sqrt(lengthSquared);
@@ -381,9 +381,11 @@ SeparatingAxisResult separatingAxisTest(const Obb& a, const Obb& b,
   const double edgeBar = face.depth * (1.0 - params.edgeBias);
 
   // --- Edge-edge axes L = a_i x b_j ---
+  // SeparatingAxisParams::skipLosingEdgeAxes off: bars no overlap reaches, every axis in.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
   const std::optional<EdgeAxis> edge =
-      bestEdge(a, b, D, C, absCEdge, faces, face.depth, edgeBar, params.parallelCutoff,
-               params.skipLosingEdgeAxes);
+      bestEdge(a, b, D, C, absCEdge, faces, params.skipLosingEdgeAxes ? face.depth : nan,
+               params.skipLosingEdgeAxes ? edgeBar : nan, params.parallelCutoff);
 
   // --- Face or edge ---
   const double leastDepth = edge ? std::min(faces.least, edge->depth) : faces.least;
