@@ -43,12 +43,6 @@ void PassPoses::standPartner(int i) {
   partners_.push_back(i);
 }
 
-Obb PassPoses::box(const World& world, int i) const {
-  const RigidBody& body = world.bodies[i];
-  if (!atPredicted(i)) return Obb::of(body);
-  return Obb{predicted_[i].x, predicted_[i].R, body.halfExtents};
-}
-
 void PassPoses::moveToPredicted(World& world, int i) {
   if (displaced_[i] || !atPredicted(i)) return;
   RigidBody& body = world.bodies[i];

@@ -74,7 +74,13 @@ class PassPoses {
   const PredictedPose& predicted(int i) const { return predicted_[i]; }
   /// Body i's box where it stands in this pass: at its predicted pose (atPredicted), moved
   /// there or not, else where it is.
-  Obb box(const World& world, int i) const;
+  /// Inline: the narrow phase of every pair with a fast body asks it for both boxes in every
+  /// pass.
+  [[gnu::always_inline]] Obb box(const World& world, int i) const {
+    const RigidBody& body = world.bodies[i];
+    if (!atPredicted(i)) return Obb::of(body);
+    return Obb{predicted_[i].x, predicted_[i].R, body.halfExtents};
+  }
   /// Moves body i to its predicted pose of this pass, remembering where it stood, if it
   /// stands there for this pass (atPredicted) and is not there yet.
   void moveToPredicted(World& world, int i);

@@ -142,38 +142,4 @@ bool SlowPairCache::predictedContact(const World& world, const CachedPair& pair,
   return true;
 }
 
-bool SlowPairCache::passContact(const World& world, const StepBodies& bodies, std::size_t k,
-                                const Vec3& gravityStep, double dt, double margin,
-                                ContactNormalTracker& normals, KeptNarrowPhase& kept,
-                                ImpulseContact& contact) {
-  const PairReach& reach = reaches_[k];
-  // Too far apart for any point to come within the margin: no contact, as predictedContact
-  // would find, without reading the points.
-  if (reach.count > 0 && !mayTouch(bodies, reach, margin)) return false;
-  CachedPair& pair = pairs_[k];
-  if (pair.count > 0) {
-    if (!predictedContact(world, pair, gravityStep, dt, margin, contact)) return false;
-    // The bodies have not moved since the cache was built: its manifold names the face, the
-    // same in every pass, so remembering it once is remembering it every pass.
-    if (!pair.remembered) normals.remember(world, pair.manifold);
-    pair.remembered = true;
-    return true;
-  }
-  // No point to predict from: the narrow phase where the two slow bodies stand. Neither body
-  // moved since the first pass that looked: the narrow phase answers as then.
-  if (pair.exact == kExactUnknown) {
-    pair.exact = static_cast<int>(exactManifolds_.size());
-    exactManifolds_.push_back(kept.collide(reach.a, Obb::of(world.bodies[reach.a]), reach.b,
-                                           Obb::of(world.bodies[reach.b]), margin));
-    exactManifolds_.back().a = reach.a;
-    exactManifolds_.back().b = reach.b;
-  }
-  const ContactManifold& m = exactManifolds_[static_cast<std::size_t>(pair.exact)];
-  if (m.count == 0) return false;
-  // Its face is remembered once while it stays slow, as the predicted pairs'.
-  contact = normals.contactOf(world, m, !pair.remembered);
-  pair.remembered = true;
-  return true;
-}
-
 }  // namespace boxsim
