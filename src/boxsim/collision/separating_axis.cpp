@@ -14,11 +14,14 @@
 /// never by which box came first. Hence the same depth bit for bit and the exact negated normal.
 ///
 /// Cost. Most pairs a step tests are boxes resting face on face, so the work is arranged for
-/// them: every axis gets its depth, but a normal (three divisions for an edge axis) and the
-/// tie-break data (face area, height) are formed only for the few axes that can still win,
-/// and an edge axis whose depth provably cannot win is not divided out at all. None of this
-/// changes a result bit: every value that reaches the result, or a comparison that picks it,
-/// is computed by the same expression as in the plain loop over all 15 axes.
+/// them: a normal (three divisions for an edge axis) and the tie-break data (face area,
+/// height) are formed only for the few axes that can still win, an edge axis whose depth
+/// provably cannot win is not divided out at all, and most such axes are not even formed: a
+/// lower bound of their overlap from the face axes' numbers rules them out before their cross
+/// product (edgeOverlapAtLeast). None of this changes a result bit: every value that reaches
+/// the result, or a comparison that picks it, is computed by the same expression as in the
+/// plain loop over all 15 axes (separatingAxisTest with SeparatingAxisParams::
+/// skipLosingEdgeAxes off, against which it is tested).
 #include "boxsim/collision/separating_axis.hpp"
 
 #include <algorithm>
@@ -199,11 +202,11 @@ EdgeOverlap edgeOverlap(const Obb& a, const Obb& b, const Vec3& D, const AbsCEdg
 
 /// A lower bound (m times |L|) of edgeOverlap<i, j>'s overlap from what the face axes already
 /// hold, without the cross product: in A's frame L = a_i x b_j is C(i1, j) a_i2 - C(i2, j) a_i1,
-/// so L . D = C(i1, j) (a_i2 . D) - C(i2, j) (a_i1 . D), with C_ij = a_i . b_j and distA the face
-/// axes of A's a_k . D. The radii rA and rB are edgeOverlap's own expressions, bit for bit; only
-/// |L . D| is formed another way, and `slack` (m) covers how far the two forms can differ: their
-/// rounding (about 20 ulp of |D|) and the axes' departure from orthonormal (3 δ |D| for columns
-/// orthonormal within δ).
+/// so L . D = C(i1, j) (a_i2 . D) - C(i2, j) (a_i1 . D), with C_ij = a_i . b_j and dist the face
+/// axes' a_k . D (FaceDepths::dist, A's first). The radii rA and rB are edgeOverlap's own
+/// expressions, bit for bit; only |L . D| is formed another way, and `slack` (m) covers how far
+/// the two forms can differ: their rounding (about 20 ulp of |D|) and the axes' departure from
+/// orthonormal (3 δ |D| for columns orthonormal within δ).
 template <int i, int j, class AbsCEdge>
 double edgeOverlapAtLeast(const Obb& a, const Obb& b, const Mat3& C,
                           const std::array<double, 6>& dist, const AbsCEdge& absCEdge,

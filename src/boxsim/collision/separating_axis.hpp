@@ -60,7 +60,8 @@ struct SeparatingAxisParams {
 /// perpendicular to the line of centres, its sign, and the choice between equal tied faces of
 /// A and B, go by the lexicographic order of the centres, so this holds there too; only two
 /// concentric boxes with equal tied faces keep the kind (and may keep the normal).
-/// \param a, b   the boxes; their axes must be orthonormal
+/// \param a, b   the boxes; their axes must be orthonormal (within 3e-10: the edge axes left out
+///               by a bound rely on it; a normalised quaternion's matrix is within ~1e-16)
 /// \return depth in m, unit normal from A to B (for an edge axis, the normalised cross
 ///         product, so depths along every axis are in metres)
 SeparatingAxisResult separatingAxisTest(const Obb& a, const Obb& b,
