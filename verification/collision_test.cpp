@@ -277,8 +277,8 @@ TEST_CASE("Leaving out the edge axes that lose to the face changes no bit of the
           kind == 1 ? Mat3(Mat3::Identity()) : Mat3(random.rotation().toRotationMatrix());
       a = Obb{far, base * small(kind == 1 ? 1e-9 : 0.09), Vec3(0.5, 0.5, 0.5)};
       const double gap = random.uniform(-2e-3, 2e-3) * (trial % 12 < 6 ? 1.0 : 1e-7);
-      b = Obb{Vec3(far + base * Vec3(random.uniform(-0.6, 0.6), 1.0 + gap, random.uniform(-0.6, 0.6))),
-              base * small(kind == 1 ? 1e-9 : 0.09), Vec3(0.5, 0.5, 0.5)};
+      const Vec3 offset(random.uniform(-0.6, 0.6), 1.0 + gap, random.uniform(-0.6, 0.6));
+      b = Obb{Vec3(far + base * offset), base * small(kind == 1 ? 1e-9 : 0.09), Vec3(0.5, 0.5, 0.5)};
     } else if (kind == 4) {  // a box on a wide ground, far from its centre
       a = Obb{Vec3(0, -0.5, 0), Mat3::Identity(), Vec3(150, 0.5, 150)};
       b = Obb{Vec3(random.uniform(-149, 149), 0.5 + random.uniform(-1e-3, 1e-3),

@@ -29,6 +29,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <type_traits>
 
 namespace boxsim {
 namespace {
@@ -178,82 +179,67 @@ struct EdgeOverlap {
   double overlap;  ///< (rA + rB) - |L . D|, m times |L|: Eberly's unnormalised separation
 };
 
-/// Edge-edge axis L = a_i x b_j with its overlap, absCEdge(r, c) being |C_rc| + absCEpsilon and
-/// D = centre of B - centre of A (m). Shared by the full test and separatedBeyond. The indices
-/// are template arguments, so every index below is a constant: the index arithmetic costs
-/// more than the axis' own.
+/// Calls f(I, J) with I, J std::integral_constant<int, i> and <int, j> for edge indices known
+/// only at run time (0..2 each), so that the axis functions below see their indices as constants:
+/// the index arithmetic costs more than an axis' own.
+template <class F>
+decltype(auto) withEdgeIndices(int i, int j, F&& f) {
+  using std::integral_constant;
+  switch (3 * i + j) {
+    case 0: return f(integral_constant<int, 0>{}, integral_constant<int, 0>{});
+    case 1: return f(integral_constant<int, 0>{}, integral_constant<int, 1>{});
+    case 2: return f(integral_constant<int, 0>{}, integral_constant<int, 2>{});
+    case 3: return f(integral_constant<int, 1>{}, integral_constant<int, 0>{});
+    case 4: return f(integral_constant<int, 1>{}, integral_constant<int, 1>{});
+    case 5: return f(integral_constant<int, 1>{}, integral_constant<int, 2>{});
+    case 6: return f(integral_constant<int, 2>{}, integral_constant<int, 0>{});
+    case 7: return f(integral_constant<int, 2>{}, integral_constant<int, 1>{});
+    default: return f(integral_constant<int, 2>{}, integral_constant<int, 2>{});
+  }
+}
+
+/// The projected radii rA + rB of edge-edge axis L = a_i x b_j (m times |L|), absCEdge(r, c)
+/// being |C_rc| + absCEpsilon: Eberly's rows L = A_i x B_j. One expression for edgeOverlap and
+/// edgeOverlapAtLeast, so that the two agree bit for bit.
 template <int i, int j, class AbsCEdge>
-EdgeOverlap edgeOverlap(const Obb& a, const Obb& b, const Vec3& D, const AbsCEdge& absCEdge) {
+double edgeRadii(const Obb& a, const Obb& b, const AbsCEdge& absCEdge) {
   const Vec3& ea = a.halfExtents;
   const Vec3& eb = b.halfExtents;
   constexpr int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
   constexpr int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+  const double rA = ea[i1] * absCEdge(i2, j) + ea[i2] * absCEdge(i1, j);
+  const double rB = eb[j1] * absCEdge(i, j2) + eb[j2] * absCEdge(i, j1);
+  return rA + rB;
+}
+
+/// Edge-edge axis L = a_i x b_j with its overlap, absCEdge as for edgeRadii and D = centre of B
+/// - centre of A (m). Shared by the full test and separatedBeyond.
+template <int i, int j, class AbsCEdge>
+EdgeOverlap edgeOverlap(const Obb& a, const Obb& b, const Vec3& D, const AbsCEdge& absCEdge) {
   EdgeOverlap e;
   // The cross product in world space: the swapped call computes b_j x a_i, the exact
   // negation, so |L| and |L . D| agree bit for bit.
   e.L = a.axes.col(i).cross(b.axes.col(j));
-  const double rA = ea[i1] * absCEdge(i2, j) + ea[i2] * absCEdge(i1, j);
-  const double rB = eb[j1] * absCEdge(i, j2) + eb[j2] * absCEdge(i, j1);
   e.dist = e.L.dot(D);
   // Eberly's unnormalised separation; dividing by |L| turns it into metres.
-  e.overlap = (rA + rB) - std::abs(e.dist);
+  e.overlap = edgeRadii<i, j>(a, b, absCEdge) - std::abs(e.dist);
   return e;
 }
 
 /// A lower bound (m times |L|) of edgeOverlap<i, j>'s overlap from what the face axes already
 /// hold, without the cross product: in A's frame L = a_i x b_j is C(i1, j) a_i2 - C(i2, j) a_i1,
 /// so L . D = C(i1, j) (a_i2 . D) - C(i2, j) (a_i1 . D), with C_ij = a_i . b_j and dist the face
-/// axes' a_k . D (FaceDepths::dist, A's first). The radii rA and rB are edgeOverlap's own
-/// expressions, bit for bit; only |L . D| is formed another way, and `slack` (m) covers how far
-/// the two forms can differ: their rounding (about 20 ulp of |D|) and the axes' departure from
-/// orthonormal (3 δ |D| for columns orthonormal within δ).
+/// axes' a_k . D (FaceDepths::dist, A's first). The radii are edgeOverlap's own (edgeRadii);
+/// only |L . D| is formed another way, and `slack` (m) covers how far the two forms can differ:
+/// their rounding (about 20 ulp of |D|) and the axes' departure from orthonormal (3 δ |D| for
+/// columns orthonormal within δ).
 template <int i, int j, class AbsCEdge>
 double edgeOverlapAtLeast(const Obb& a, const Obb& b, const Mat3& C,
                           const std::array<double, 6>& dist, const AbsCEdge& absCEdge,
                           double slack) {
-  const Vec3& ea = a.halfExtents;
-  const Vec3& eb = b.halfExtents;
   constexpr int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
-  constexpr int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-  const double rA = ea[i1] * absCEdge(i2, j) + ea[i2] * absCEdge(i1, j);
-  const double rB = eb[j1] * absCEdge(i, j2) + eb[j2] * absCEdge(i, j1);
   const double distL = C(i1, j) * dist[i2] - C(i2, j) * dist[i1];
-  return ((rA + rB) - std::abs(distL)) - slack;
-}
-
-/// edgeOverlapAtLeast for indices known only at run time (0..2 each).
-template <class AbsCEdge>
-double edgeOverlapAtLeast(const Obb& a, const Obb& b, const Mat3& C,
-                          const std::array<double, 6>& dist, const AbsCEdge& absCEdge, double slack,
-                          int i, int j) {
-  switch (3 * i + j) {
-    case 0: return edgeOverlapAtLeast<0, 0>(a, b, C, dist, absCEdge, slack);
-    case 1: return edgeOverlapAtLeast<0, 1>(a, b, C, dist, absCEdge, slack);
-    case 2: return edgeOverlapAtLeast<0, 2>(a, b, C, dist, absCEdge, slack);
-    case 3: return edgeOverlapAtLeast<1, 0>(a, b, C, dist, absCEdge, slack);
-    case 4: return edgeOverlapAtLeast<1, 1>(a, b, C, dist, absCEdge, slack);
-    case 5: return edgeOverlapAtLeast<1, 2>(a, b, C, dist, absCEdge, slack);
-    case 6: return edgeOverlapAtLeast<2, 0>(a, b, C, dist, absCEdge, slack);
-    case 7: return edgeOverlapAtLeast<2, 1>(a, b, C, dist, absCEdge, slack);
-    default: return edgeOverlapAtLeast<2, 2>(a, b, C, dist, absCEdge, slack);
-  }
-}
-
-/// edgeOverlap for indices known only at run time (0..2 each).
-template <class AbsCEdge>
-EdgeOverlap edgeOverlap(const Obb& a, const Obb& b, const Vec3& D, const AbsCEdge& absCEdge,
-                        int i, int j) {
-  switch (3 * i + j) {
-    case 0: return edgeOverlap<0, 0>(a, b, D, absCEdge);
-    case 1: return edgeOverlap<0, 1>(a, b, D, absCEdge);
-    case 2: return edgeOverlap<0, 2>(a, b, D, absCEdge);
-    case 3: return edgeOverlap<1, 0>(a, b, D, absCEdge);
-    case 4: return edgeOverlap<1, 1>(a, b, D, absCEdge);
-    case 5: return edgeOverlap<1, 2>(a, b, D, absCEdge);
-    case 6: return edgeOverlap<2, 0>(a, b, D, absCEdge);
-    case 7: return edgeOverlap<2, 1>(a, b, D, absCEdge);
-    default: return edgeOverlap<2, 2>(a, b, D, absCEdge);
-  }
+  return (edgeRadii<i, j>(a, b, absCEdge) - std::abs(distL)) - slack;
 }
 
 /// The depths of the six face axes (Eberly's table of the 15 tests, rows L = A_i, L = B_j).
@@ -324,10 +310,13 @@ std::optional<EdgeAxis> bestEdge(const Obb& a, const Obb& b, const Vec3& D, cons
       // (|L|^2 rounded just above 1) one whose depth, over both bars, could not change the
       // answer either (see below). Only axes after the first one evaluated, as below.
       if (edge) {
-        const double atLeast = edgeOverlapAtLeast(a, b, C, faces.dist, absCEdge, slack, i, j);
+        const double atLeast = withEdgeIndices(i, j, [&](auto I, auto J) {
+          return edgeOverlapAtLeast<I, J>(a, b, C, faces.dist, absCEdge, slack);
+        });
         if (atLeast > 0.0 && atLeast >= edgeBar && atLeast >= faceDepth) continue;
       }
-      const EdgeOverlap o = edgeOverlap(a, b, D, absCEdge, i, j);
+      const EdgeOverlap o = withEdgeIndices(
+          i, j, [&](auto I, auto J) { return edgeOverlap<I, J>(a, b, D, absCEdge); });
       const double lengthSquared = o.L.squaredNorm();  // |L| = sqrt of this, as L.norm() does
 
       // An axis that provably loses to the face is not divided out (no root, no division).
@@ -437,7 +426,9 @@ bool separatedBeyond(const Obb& a, const Obb& b, const SeparatingAxisResult& axi
     depth = faceDepthB(a, b, absC, j, b.axes.col(j).dot(D));
   } else {
     const auto absCEdge = [&](int r, int c) { return absC(r, c) + params.absCEpsilon; };
-    const EdgeOverlap o = edgeOverlap(a, b, D, absCEdge, axis.indexA, axis.indexB);
+    const EdgeOverlap o = withEdgeIndices(axis.indexA, axis.indexB, [&](auto I, auto J) {
+      return edgeOverlap<I, J>(a, b, D, absCEdge);
+    });
     const double length = std::sqrt(o.L.squaredNorm());
     // The full test skips such an axis, so it says nothing about the full test's answer.
     if (!(length >= params.parallelCutoff)) return false;
