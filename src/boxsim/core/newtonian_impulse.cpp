@@ -96,7 +96,7 @@ Eigen::Vector2d pressureCentreWithin(const Eigen::Vector2d& p, const std::array<
   double scale = 1.0;
   for (int k = 0; k < count; ++k) {
     const Eigen::Vector2d& from = q[k];
-    const Eigen::Vector2d& to = q[(k + 1) % count];
+    const Eigen::Vector2d& to = q[k + 1 < count ? k + 1 : 0];
     // The edge's normal, turned to point away from the origin inside.
     Eigen::Vector2d outward(to.y() - from.y(), from.x() - to.x());
     if (outward.dot(from) < 0.0) outward = -outward;

@@ -291,13 +291,12 @@ void collideInOrder(World& world, std::vector<ImpulseContact>& contacts, const C
     // unless the islands need to know which.
     const bool watch = !result.changed || (islands && !islands->changed(body));
     const BodyMomenta beforeA(world.bodies[c.a]), beforeB(world.bodies[c.b]);
-    // The pair's friction sums, looked up once: COLLIDE finds the same entry, inserting none.
-    const FrictionSum* sum =
-        watch && totals && !c.friction.frictionless() ? &totals->at(c.a, c.b) : nullptr;
-    const SumBits sumBefore = sum ? SumBits(*sum) : SumBits();
+    // The pair's friction sums, looked up once and handed to COLLIDE.
+    FrictionSum* sum = totals && !c.friction.frictionless() ? &totals->at(c.a, c.b) : nullptr;
+    const SumBits sumBefore = watch && sum ? SumBits(*sum) : SumBits();
     if (beforeCollide) beforeCollide(world, c, call);
     if (touched) (*touched)[c.a] = (*touched)[c.b] = 1;
-    const double j = collide(world, c, call.restitution, call.gravity, call.dt, stable, totals);
+    const double j = collide(world, c, call.restitution, call.gravity, call.dt, stable, totals, sum);
     if (j > 0.0) ++result.impulses;
     if (!watch) continue;
     // With friction, the pair's sums (FrictionTotals) are state too, which the momenta do not

@@ -383,18 +383,23 @@ void OncePerStepGathering::putBackAll(World& world) {
 void OncePerStepGathering::mergeSlowPairs(const World& world, const Vec3& gravityStep, double dt,
                                           double margin, ContactNormalTracker& normals,
                                           std::vector<ImpulseContact>& contacts) {
-  contacts.clear();
+  // The contacts are written where they go, over the last pass' (the first `count` are this
+  // pass'): a cached pair's contact is made in place, not made and then copied.
+  std::size_t count = 0;
+  const auto next = [&contacts, &count]() -> ImpulseContact& {
+    if (count == contacts.size()) contacts.emplace_back();
+    return contacts[count];
+  };
   std::size_t f = 0;
   const auto keyOf = [](const ImpulseContact& contact) {
     return std::pair<int, int>(contact.a, contact.b);
   };
   const std::vector<PairReach>& reaches = slowPairs_.reaches();
-  ImpulseContact c;
   for (std::size_t k = 0; k < reaches.size(); ++k) {
     const PairReach& reach = reaches[k];
     const std::pair<int, int> key(reach.a, reach.b);
-    for (; f < fastContacts_.size() && keyOf(fastContacts_[f]) < key; ++f)
-      contacts.push_back(fastContacts_[f]);
+    for (; f < fastContacts_.size() && keyOf(fastContacts_[f]) < key; ++f, ++count)
+      next() = fastContacts_[f];
     if (skip_[key.first] || skip_[key.second]) continue;
     // A body that turned fast in this step: unless the two move together, its pairs are among
     // the fast ones now.
@@ -403,9 +408,10 @@ void OncePerStepGathering::mergeSlowPairs(const World& world, const Vec3& gravit
       slowPairs_.forgetFace(k);
       continue;
     }
-    if (slowPairs_.passContact(world, bodies_, k, gravityStep, dt, margin, normals, kept_, c))
-      contacts.push_back(c);
+    if (slowPairs_.passContact(world, bodies_, k, gravityStep, dt, margin, normals, kept_, next()))
+      ++count;
   }
+  contacts.resize(count);
   contacts.insert(contacts.end(), fastContacts_.begin() + static_cast<std::ptrdiff_t>(f),
                   fastContacts_.end());
 }
