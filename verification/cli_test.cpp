@@ -324,6 +324,13 @@ TEST_CASE("Technique options reach the stepper and its header, and options a met
   const Result noCcd = runBoxsim(kDir, "run " + die + " --method impulse --continuous-collision on --out " + refused);
   CHECK(noCcd.status != 0);
   CHECK_THAT(noCcd.stderrText, Contains("takes no continuous collision option"));
+  CHECK(boxsim::readTrajectory(out).meta.at("impact_passes") == "0");
+  const Result impact = runBoxsim(kDir, "run " + die + " --method damped --duration 0.1 --impact-passes 20 --out " + out);
+  REQUIRE(impact.status == 0);
+  CHECK(boxsim::readTrajectory(out).meta.at("impact_passes") == "20");
+  const Result noImpact = runBoxsim(kDir, "run " + die + " --method impulse --impact-passes 20 --out " + refused);
+  CHECK(noImpact.status != 0);
+  CHECK_THAT(noImpact.stderrText, Contains("takes no impact passes option"));
   // Geometric stability: the analytic method's default is off, damped integration's the
   // thesis' rule; under_load is taken by both, refused by the others.
   CHECK(boxsim::readTrajectory(out).meta.at("geometric_stability") == "thesis");

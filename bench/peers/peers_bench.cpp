@@ -400,7 +400,7 @@ int main(int argc, char** argv) {
                  "contact gathering after a slash (damped/every_pass), and '+friction' for the "
                  "peers' Coulomb friction (damped+friction), '+chatter' for chatter detected from "
                  "history (damped+chatter), '+under_load' for stability under load "
-                 "(damped+under_load); bullet, bullet/ccd, ode (default: damped, damped+friction, "
+                 "(damped+under_load), '+impact' for 20 impact passes (damped+impact); bullet, bullet/ccd, ode (default: damped, damped+friction, "
                  "damped+chatter, damped+under_load and every peer found, Bullet's CCD too on the "
                  "shot pyramids)");
   app.add_option("--restitution", restitution, "Restitution of every scene (default: each scene's own)")

@@ -16,7 +16,7 @@ namespace {
 /// Throws std::invalid_argument naming the first option given that `method` does not take:
 /// the impulse step's (contact normal, contact gathering) unless `takesImpulseOptions`,
 /// geometric stability unless `takesGeometricStability`, and those of damped integration alone
-/// (sleep, chatter detection, continuous collision, plausibility seed).
+/// (sleep, chatter detection, continuous collision, impact passes, plausibility seed).
 void refuseOptions(const std::string& method, const TechniqueOptions& options,
                    bool takesImpulseOptions, bool takesGeometricStability = false) {
   const std::pair<bool, const char*> notTaken[] = {
@@ -27,6 +27,7 @@ void refuseOptions(const std::string& method, const TechniqueOptions& options,
       {options.sleep.has_value(), "sleep"},
       {options.chatterDetection.has_value(), "chatter detection"},
       {options.continuousCollision.has_value(), "continuous collision"},
+      {options.impactPasses.has_value(), "impact passes"},
       {options.plausibilitySeed.has_value(), "plausibility seed"},
   };
   for (const auto& [given, option] : notTaken)
@@ -90,6 +91,7 @@ std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueO
     if (options.sleep) params.sleep.enabled = *options.sleep;
     if (options.chatterDetection) params.sleep.chatterDetection = *options.chatterDetection;
     if (options.continuousCollision) params.continuousCollision.enabled = *options.continuousCollision;
+    if (options.impactPasses) params.impactPasses = *options.impactPasses;
     if (options.integrator) params.impulse.integrator = *options.integrator;
     if (options.plausibilitySeed) {
       params.plausibility.enabled = true;

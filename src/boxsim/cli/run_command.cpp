@@ -31,6 +31,7 @@ struct RunArgs {
   std::string sleep;          // "on", "off" or empty (the method's default)
   std::string chatterDetection;  // "on", "off" or empty (the method's default)
   std::string continuousCollision;  // "on", "off" or empty (the method's default)
+  std::optional<int> impactPasses;  // empty: the method's default (0)
   std::string broadPhase;     // empty: the scene's choice
   std::optional<unsigned long> plausibilitySeed;
   std::optional<int> threads;  // empty: the method's default (1)
@@ -92,6 +93,7 @@ TechniqueOptions techniqueOptions(const RunArgs& args) {
   if (!args.chatterDetection.empty()) options.chatterDetection = args.chatterDetection == "on";
   if (!args.continuousCollision.empty())
     options.continuousCollision = args.continuousCollision == "on";
+  options.impactPasses = args.impactPasses;
   options.plausibilitySeed = args.plausibilitySeed;
   options.threads = args.threads;
   return options;
@@ -199,6 +201,12 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("--continuous-collision", args->continuousCollision,
                   "Continuous collision detection for fast bodies (damped): on, off (default)")
       ->check(CLI::IsMember({"on", "off"}));
+  cmd->add_option("--impact-passes", args->impactPasses,
+                  "Collision passes damped integration may add after its five while each pass "
+                  "before stopped a new impact (a pair approaching faster than 0.05 of its "
+                  "smaller box's half size a step), so that a landing stops a whole column of "
+                  "boxes in its step (default 0: the thesis' five)")
+      ->check(CLI::Range(0, 1000));
   cmd->add_option("--broad-phase", args->broadPhase,
                   "How candidate pairs are found, overriding the scene's \"broad_phase\": "
                   "sweep_and_prune (default) or all_pairs (every pair tested, thesis §4.1); the "

@@ -172,6 +172,15 @@ double collideImpulse(const World& world, const ImpulseContact& contact, double 
 
 namespace {
 
+/// Whether COLLIDE's contact, approaching at `approach` m/s before it, was an impact
+/// (PassResult::impacts): an impulse `j` > 0 and approach Δt above `reach` ℓ.
+bool isImpact(const World& world, const ImpulseContact& c, double approach, double j, double dt,
+              double reach) {
+  const double ell = std::min(world.bodies[c.a].halfExtents.minCoeff(),
+                              world.bodies[c.b].halfExtents.minCoeff());
+  return j > 0.0 && approach * dt > reach * ell;
+}
+
 /// Whether COLLIDE's loop of a pass may run in dependency levels on several threads (the
 /// conditions of impulsePass' "Threads", the threads aside).
 bool levelsApply(const World& world, const std::vector<ImpulseContact>& contacts,
@@ -235,7 +244,7 @@ void collideInLevels(World& world, std::vector<ImpulseContact>& contacts, const 
                      const std::vector<char>& stable, std::vector<char>* touched,
                      const BeforeCollide& beforeCollide, FrictionTotals* totals,
                      ContactIslands* islands, IslandSettling settling, [[maybe_unused]] int threads,
-                     CollideLevels& w, PassResult& result) {
+                     CollideLevels& w, double impactReach, PassResult& result) {
   const std::size_t m = contacts.size();
   const int levels = static_cast<int>(w.start.size()) - 1;
   // The pairs' friction sums inserted first, then their addresses taken (an insertion may move
@@ -252,6 +261,7 @@ void collideInLevels(World& world, std::vector<ImpulseContact>& contacts, const 
     for (const ImpulseContact& c : contacts) (*touched)[c.a] = (*touched)[c.b] = 1;
   w.impulse.assign(m, 0.0);
   w.changed.assign(m, 0);
+  if (impactReach > 0.0) w.impact.assign(m, 0);
   BOXSIM_OMP(omp parallel num_threads(threads))
   for (int l = 0; l < levels; ++l) {
     // The contacts of a level share no movable body: in any order, the same bits.
@@ -262,8 +272,13 @@ void collideInLevels(World& world, std::vector<ImpulseContact>& contacts, const 
       const BodyMomenta beforeA(world.bodies[c.a]), beforeB(world.bodies[c.b]);
       const SumBits sumBefore = w.sums[k] ? SumBits(*w.sums[k]) : SumBits();
       if (beforeCollide) beforeCollide(world, c, call);
+      const double approach =
+          impactReach > 0.0 ? approachSpeed(world, c, call.gravity, call.dt) : 0.0;
       w.impulse[k] =
           collide(world, c, call.restitution, call.gravity, call.dt, stable, totals, w.sums[k]);
+      if (impactReach > 0.0)
+        w.impact[k] =
+            static_cast<char>(isImpact(world, c, approach, w.impulse[k], call.dt, impactReach));
       w.changed[k] = static_cast<char>(!beforeA.same(world.bodies[c.a]) ||
                                        !beforeB.same(world.bodies[c.b]) ||
                                        (w.sums[k] && !sumBefore.same(*w.sums[k])));
@@ -275,6 +290,7 @@ void collideInLevels(World& world, std::vector<ImpulseContact>& contacts, const 
     result.changed = result.changed || w.changed[k];
     const bool approached = settling == IslandSettling::Unapproached && w.impulse[k] > 0.0;
     if (islands && (w.changed[k] || approached)) islands->markChanged(w.body[k]);
+    if (impactReach > 0.0 && w.impact[k]) ++result.impacts;
   }
 }
 
@@ -283,7 +299,8 @@ void collideInLevels(World& world, std::vector<ImpulseContact>& contacts, const 
 void collideInOrder(World& world, std::vector<ImpulseContact>& contacts, const CollideCall& call,
                     const std::vector<char>& stable, std::vector<char>* touched,
                     const BeforeCollide& beforeCollide, FrictionTotals* totals,
-                    ContactIslands* islands, IslandSettling settling, PassResult& result) {
+                    ContactIslands* islands, IslandSettling settling, double impactReach,
+                    PassResult& result) {
   for (ImpulseContact& c : contacts) {
     // The island of the contact's movable body (a movable body's island holds both).
     const int body = world.bodies[c.a].immovable ? c.b : c.a;
@@ -296,8 +313,12 @@ void collideInOrder(World& world, std::vector<ImpulseContact>& contacts, const C
     const SumBits sumBefore = watch && sum ? SumBits(*sum) : SumBits();
     if (beforeCollide) beforeCollide(world, c, call);
     if (touched) (*touched)[c.a] = (*touched)[c.b] = 1;
+    const double approach =
+        impactReach > 0.0 ? approachSpeed(world, c, call.gravity, call.dt) : 0.0;
     const double j = collide(world, c, call.restitution, call.gravity, call.dt, stable, totals, sum);
     if (j > 0.0) ++result.impulses;
+    if (impactReach > 0.0 && isImpact(world, c, approach, j, call.dt, impactReach))
+      ++result.impacts;
     if (!watch) continue;
     // With friction, the pair's sums (FrictionTotals) are state too, which the momenta do not
     // show: an impulse too small to change them, or one COLLIDE L11-L14 takes back, still grows
@@ -316,7 +337,7 @@ PassResult impulsePass(World& world, double dt, double restitution, GravityMode 
                        GravityMode impulseGravity, double margin, ContactGathering& gathering,
                        const std::vector<char>& stable, std::vector<char>* touched,
                        const BeforeCollide& beforeCollide, FrictionTotals* totals,
-                       IslandSettling settling) {
+                       IslandSettling settling, double impactReach) {
   // RESOLVECOLLISIONS L2-L3, L6 and RESOLVECONTACTS L2-L3, L6: integrateObjectPositions and
   // gatherCollisions, and revertToOriginalPositions too: the contacts keep the lever arms of
   // the poses they were found at.
@@ -340,10 +361,10 @@ PassResult impulsePass(World& world, double dt, double restitution, GravityMode 
   if (shared && gathering.threads() > 1) {
     gathering.countLevelPass();
     collideInLevels(world, contacts, call, stable, touched, beforeCollide, totals, islands,
-                    settling, gathering.threads(), gathering.collideLevels(), result);
+                    settling, gathering.threads(), gathering.collideLevels(), impactReach, result);
   } else {
     collideInOrder(world, contacts, call, stable, touched, beforeCollide, totals, islands,
-                   settling, result);
+                   settling, impactReach, result);
   }
   if (work && shared) {
     ParallelWork::addSince(work->levelSeconds, start);

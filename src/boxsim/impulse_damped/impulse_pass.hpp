@@ -90,6 +90,11 @@ struct PassResult {
   /// With island settling, whether every island is settled after the pass: the remaining
   /// passes of its loop would change nothing.
   bool settled = false;
+  /// With an impact reach (impulsePass' `impactReach` > 0), the pass' impacts: contacts to
+  /// which COLLIDE gave an impulse while their bodies approached (approachSpeed, after the
+  /// BeforeCollide hook) faster than impactReach ℓ per Δt, ℓ the smallest half extent of the
+  /// pair's smaller box (DampedIntegrationParams::impactPasses).
+  int impacts = 0;
 };
 
 /// One pass of RESOLVECOLLISIONS / RESOLVECONTACTS (\alg{RESOLVECOLLISIONS L2-L6},
@@ -116,11 +121,12 @@ struct PassResult {
 /// sleeper (gathering.sleepers()) and an awake body, where `beforeCollide` may wake the sleeper
 /// and, through its supports, bodies of other contacts (Sleeping::wake); such a pass runs in
 /// order. `beforeCollide` must change nothing for a contact between two awake bodies.
+/// With `impactReach` > 0 (ℓ per Δt) the pass counts its impacts (PassResult::impacts).
 PassResult impulsePass(World& world, double dt, double restitution, GravityMode predict,
                        GravityMode impulseGravity, double margin, ContactGathering& gathering,
                        const std::vector<char>& stable, std::vector<char>* touched = nullptr,
                        const BeforeCollide& beforeCollide = {}, FrictionTotals* totals = nullptr,
-                       IslandSettling settling = IslandSettling::Never);
+                       IslandSettling settling = IslandSettling::Never, double impactReach = 0.0);
 
 /// IntegrateObjectVelocities of \alg{DAMPEDINTEGRATION L3} (and Guendelman et al.'s velocity
 /// update): P += Δt m g for every movable body; positions are not touched.
