@@ -295,7 +295,10 @@ void collideInLevels(World& world, std::vector<ImpulseContact>& contacts, const 
 }
 
 /// COLLIDE's loop of impulsePass in A.2's order, contact after contact: its PassResult
-/// (impulses, whether anything changed) and the islands the contacts changed.
+/// (impulses, whether anything changed) and the islands the contacts changed; with kImpacts, its
+/// impacts (PassResult::impacts) of `impactReach` ℓ per Δt (a template argument, so that the
+/// passes that count none carry no test of it).
+template <bool kImpacts>
 void collideInOrder(World& world, std::vector<ImpulseContact>& contacts, const CollideCall& call,
                     const std::vector<char>& stable, std::vector<char>* touched,
                     const BeforeCollide& beforeCollide, FrictionTotals* totals,
@@ -313,12 +316,12 @@ void collideInOrder(World& world, std::vector<ImpulseContact>& contacts, const C
     const SumBits sumBefore = watch && sum ? SumBits(*sum) : SumBits();
     if (beforeCollide) beforeCollide(world, c, call);
     if (touched) (*touched)[c.a] = (*touched)[c.b] = 1;
-    const double approach =
-        impactReach > 0.0 ? approachSpeed(world, c, call.gravity, call.dt) : 0.0;
+    double approach = 0.0;
+    if constexpr (kImpacts) approach = approachSpeed(world, c, call.gravity, call.dt);
     const double j = collide(world, c, call.restitution, call.gravity, call.dt, stable, totals, sum);
     if (j > 0.0) ++result.impulses;
-    if (impactReach > 0.0 && isImpact(world, c, approach, j, call.dt, impactReach))
-      ++result.impacts;
+    if constexpr (kImpacts)
+      if (isImpact(world, c, approach, j, call.dt, impactReach)) ++result.impacts;
     if (!watch) continue;
     // With friction, the pair's sums (FrictionTotals) are state too, which the momenta do not
     // show: an impulse too small to change them, or one COLLIDE L11-L14 takes back, still grows
@@ -363,8 +366,12 @@ PassResult impulsePass(World& world, double dt, double restitution, GravityMode 
     collideInLevels(world, contacts, call, stable, touched, beforeCollide, totals, islands,
                     settling, gathering.threads(), gathering.collideLevels(), impactReach, result);
   } else {
-    collideInOrder(world, contacts, call, stable, touched, beforeCollide, totals, islands,
-                   settling, impactReach, result);
+    if (impactReach > 0.0)
+      collideInOrder<true>(world, contacts, call, stable, touched, beforeCollide, totals, islands,
+                           settling, impactReach, result);
+    else
+      collideInOrder<false>(world, contacts, call, stable, touched, beforeCollide, totals, islands,
+                            settling, impactReach, result);
   }
   if (work && shared) {
     ParallelWork::addSince(work->levelSeconds, start);
