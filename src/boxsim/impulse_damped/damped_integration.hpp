@@ -84,9 +84,10 @@ struct DampedIntegrationParams {
   /// test "With impact passes a column ..."). Measured with the benchmark's yardstick
   /// (boxsim_peers, engine damped+impact, 20 passes; 4 nudged starts, 2 at e = 0.5), mean /
   /// final / largest penetration: the 1000-cube clump at e = 0 with μ = 0.5, which lands at
-  /// 17 m/s, 27.0 / 129 / 236 mm -> 8.4 / 3.0 / 133 mm at 5.6 % more time a step; frictionless,
-  /// 19.5 / 8.7 / 70 mm -> 12.6 / 7.6 / 45 mm at +1 %; at e = 0.5 12.0 / 85 / 141 mm -> 4.7 /
-  /// 34 / 60 mm; the 343-cube pile at e = 0, 3.6 / 0.7 / 56 mm -> 3.5 / 1.6 / 39 mm at +12 %.
+  /// 17 m/s, 27.0 / 129 / 236 mm -> 8.4 / 3.0 / 133 mm; frictionless, 19.5 / 8.7 / 70 mm ->
+  /// 12.6 / 7.6 / 45 mm; at e = 0.5 12.0 / 85 / 141 mm -> 4.7 / 34 / 60 mm; the 343-cube pile
+  /// at e = 0, 3.6 / 0.7 / 56 mm -> 3.5 / 1.6 / 39 mm. What they cost: docs/benchmarks.md, the
+  /// rows "boxsim damped impact" and "boxsim damped μ impact".
   /// A step whose last collision pass stops no impact runs none (the same bits: test "Impact
   /// passes change nothing ..."), and such passes settle as the others do (islands, a pass that
   /// changed nothing).
