@@ -37,7 +37,7 @@ struct TechniqueOptions {
   /// Continuous collision detection for fast bodies of damped integration
   /// (continuous_collision.hpp); empty: default (off).
   std::optional<bool> continuousCollision;
-  /// Collision passes damped integration may add while new impacts come
+  /// Collision passes damped integration may add while a pass still stops an impact
   /// (DampedIntegrationParams::impactPasses, >= 0); empty: default (0, A.2 as written).
   std::optional<int> impactPasses;
   /// Visual plausibility (\thesis{§4.2}) of damped integration: perturbation on with this seed;

@@ -202,8 +202,8 @@ void addRunCommand(CLI::App& app) {
                   "Continuous collision detection for fast bodies (damped): on, off (default)")
       ->check(CLI::IsMember({"on", "off"}));
   cmd->add_option("--impact-passes", args->impactPasses,
-                  "Collision passes damped integration may add after its five while each pass "
-                  "before stopped a new impact (a pair approaching faster than 0.05 of its "
+                  "Collision passes damped integration may add after its five while the pass "
+                  "before still stopped an impact (a pair approaching faster than 0.05 of its "
                   "smaller box's half size a step), so that a landing stops a whole column of "
                   "boxes in its step (default 0: the thesis' five)")
       ->check(CLI::Range(0, 1000));

@@ -59,7 +59,7 @@ struct CollideLevels {
   std::vector<FrictionSum*> sums;  ///< per contact: its pair's friction sums, or null
   std::vector<double> impulse;    ///< per contact: COLLIDE's impulse, N s
   std::vector<char> changed;      ///< per contact: whether COLLIDE changed anything
-  std::vector<char> impact;       ///< per contact, when impacts are logged: whether an impact
+  std::vector<char> impact;       ///< per contact, when impacts are counted: whether an impact
 };
 
 /// gatherCollisions at predicted positions, pass after pass, in either mode of the file

@@ -196,9 +196,10 @@ class DampedIntegrationStepper final : public Stepper {
   /// \alg{DAMPEDINTEGRATION L1-L6} for dt s, as step() without continuous collisions.
   StepStats advance(World& world, double dt);
   /// \alg{RESOLVECOLLISIONS} (DAMPEDINTEGRATION L1): the collision passes, with high-speed
-  /// collisions perturbed (§4.2) and, with impactPasses, more while new impacts come; marks in `touched` (one flag per body) the bodies that take
-  /// part when dampCollidingBodies is on, and counts impulses and passes in `stats`; friction
-  /// keeps its sums in `totals` (nullptr in a frictionless world).
+  /// collisions perturbed (§4.2) and, with impactPasses, more while a pass still stops an
+  /// impact; marks in `touched` (one flag per body) the bodies that take part when
+  /// dampCollidingBodies is on, and counts impulses and passes in `stats`; friction keeps its
+  /// sums in `totals` (nullptr in a frictionless world).
   void resolveCollisions(World& world, double dt, double margin, std::vector<char>& touched,
                          FrictionTotals* totals, StepStats& stats);
   /// \alg{RESOLVECONTACTS} (DAMPEDINTEGRATION L2): the contact passes; marks in `touched` the
