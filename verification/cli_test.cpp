@@ -332,6 +332,8 @@ TEST_CASE("Technique options reach the stepper and its header, and options a met
   dampedOnly("--continuous-collision on", "continuous_collision", "on", "continuous collision");
   CHECK(boxsim::readTrajectory(out).meta.at("impact_passes") == "0");
   dampedOnly("--impact-passes 20", "impact_passes", "20", "impact passes");
+  CHECK(boxsim::readTrajectory(out).meta.at("damp_supported_only") == "off");
+  dampedOnly("--damp-supported-only on", "damp_supported_only", "on", "damp supported only");
   // Geometric stability: the analytic method's default is off, damped integration's the
   // thesis' rule; under_load is taken by both, refused by the others.
   CHECK(boxsim::readTrajectory(out).meta.at("geometric_stability") == "thesis");

@@ -52,7 +52,9 @@ class BoxsimEngine : public PeerEngine {
   /// detected from history (SleepParams::chatterDetection, "damped+chatter"), and in
   /// "+under_load": geometric stability with stability under load (\thesis{§6.3.1},
   /// "damped+under_load"), in "+threads2": two threads (ImpulseParams::threads), in
-  /// "+impact": 20 impact passes (DampedIntegrationParams::impactPasses, "damped+impact"), and
+  /// "+impact": 20 impact passes (DampedIntegrationParams::impactPasses, "damped+impact"), in
+  /// "+supported": damping of supported bodies only (DampingParams::supportedOnly,
+  /// "damped+supported"), and
   /// in "+shared_work": the work its threads would share measured (sharedWork()); the suffixes
   /// in any order.
   explicit BoxsimEngine(std::string engine) {
@@ -65,14 +67,16 @@ class BoxsimEngine : public PeerEngine {
     for (bool stripped = true; stripped;) {
       const bool chatter = strip("+chatter"), friction = strip("+friction"),
                  underLoad = strip("+under_load"), threads = strip("+threads2"),
-                 shared = strip("+shared_work"), impact = strip("+impact");
+                 shared = strip("+shared_work"), impact = strip("+impact"),
+                 supported = strip("+supported");
       if (chatter) options_.chatterDetection = true;
       if (friction) friction_ = true;
       if (underLoad) options_.geometricStability = GeometricStabilityMode::UnderLoad;
       if (threads) options_.threads = 2;
       if (shared) measureShared_ = true;
       if (impact) options_.impactPasses = 20;
-      stripped = chatter || friction || underLoad || threads || shared || impact;
+      if (supported) options_.dampSupportedOnly = true;
+      stripped = chatter || friction || underLoad || threads || shared || impact || supported;
     }
     const std::size_t slash = engine.find('/');
     method_ = engine.substr(0, slash);
@@ -86,6 +90,7 @@ class BoxsimEngine : public PeerEngine {
     return "boxsim " + method_ + (gathering_.empty() ? "" : " " + gathering_) + (friction_ ? " μ" : "") +
            (options_.chatterDetection.value_or(false) ? " chatter" : "") +
            (options_.geometricStability == GeometricStabilityMode::UnderLoad ? " under load" : "") +
+           (options_.dampSupportedOnly.value_or(false) ? " supported" : "") +
            (options_.impactPasses.value_or(0) > 0 ? " impact" : "") +
            (options_.threads.value_or(1) > 1 ? " " + std::to_string(*options_.threads) + " threads"
                                              : "");
@@ -96,7 +101,8 @@ class BoxsimEngine : public PeerEngine {
       if (key == "integrator" || key == "sleep" || key == "contact_gathering" ||
           (key == "chatter_detection" && value == "on") ||
           (key == "geometric_stability" && value == "under_load") ||
-          (key == "threads" && value != "1") || (key == "impact_passes" && value != "0"))
+          (key == "threads" && value != "1") || (key == "impact_passes" && value != "0") ||
+          (key == "damp_supported_only" && value == "on"))
         text += (text.empty() ? "" : ", ") + key + " " + value;
     return (text.empty() ? "defaults" : text) +
            (friction_ ? ", Coulomb friction as the peers (patch friction at each contact's centroid)"

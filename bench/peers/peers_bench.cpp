@@ -173,12 +173,13 @@ bool denseScene(const SceneSpec& spec) {
 
 /// The engines of one scene: those asked for, or by default boxsim damped integration
 /// (frictionless as the thesis, and with the peers' friction; with chatter detection, stability
-/// under load and impact passes) and every peer found (peersOf).
+/// under load and impact passes; frictionless with impact passes and damping of supported
+/// bodies only) and every peer found (peersOf).
 std::vector<std::string> enginesOf(const SceneSpec& spec, const std::vector<std::string>& asked) {
   if (!asked.empty()) return asked;
   std::vector<std::string> engines = {"damped", "damped+friction", "damped+chatter",
                                       "damped+under_load", "damped+impact",
-                                      "damped+friction+impact"};
+                                      "damped+friction+impact", "damped+supported+impact"};
   // The dense scenes, on two threads too (issue of threads: the model on the page).
   if (denseScene(spec)) {
     engines.push_back("damped+threads2");
@@ -402,10 +403,12 @@ int main(int argc, char** argv) {
                  "contact gathering after a slash (damped/every_pass), and '+friction' for the "
                  "peers' Coulomb friction (damped+friction), '+chatter' for chatter detected from "
                  "history (damped+chatter), '+under_load' for stability under load "
-                 "(damped+under_load), '+impact' for 20 impact passes (damped+impact); bullet, "
+                 "(damped+under_load), '+impact' for 20 impact passes (damped+impact), "
+                 "'+supported' for damping of supported bodies only (damped+supported); bullet, "
                  "bullet/ccd, ode (default: damped, damped+friction, damped+chatter, "
-                 "damped+under_load, damped+impact, damped+friction+impact and every peer found, "
-                 "Bullet's CCD too on the shot pyramids)");
+                 "damped+under_load, damped+impact, damped+friction+impact, "
+                 "damped+supported+impact and every peer found, Bullet's CCD too on the shot "
+                 "pyramids)");
   app.add_option("--restitution", restitution, "Restitution of every scene (default: each scene's own)")
       ->check(CLI::Range(0.0, 1.0));
   app.add_option("--sleep", sleepText, "Sleeping of every engine, on or off (default: each scene's own)")

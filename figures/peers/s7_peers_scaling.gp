@@ -1,7 +1,8 @@
 # Side by side with Bullet and ODE: mean ms per step against the number of unit cubes in the
 # clump of Fig. 6.7 (cubes flying towards its centre, falling onto the ground and piling up)
 # at restitution 0, log-log, for boxsim's damped integration (as the thesis, with friction,
-# with chatter detection, with impact passes, on two threads) and every peer engine the harness was built with.
+# with chatter detection, with impact passes, with damping of supported bodies only, on two
+# threads) and every peer engine the harness was built with.
 # Points: the mean step over every repetition; error bars: the range of the repetitions' means;
 # dashed: the 95th percentile. The grey dashed guide grows as n from the damped mean at 100 cubes; the
 # dotted line is real time at 60 Hz (16.7 ms).
@@ -14,7 +15,7 @@ stamp = system("sed -n 's/^# date: \\(.*\\)/\\1/p' ".data)
 commit = system("sed -n 's/^# commit: \\(.*\\)/\\1/p' ".data)
 engines = system("grep -v '^#' ".data." | sed 's/^[0-9]* \"\\([^\"]*\\)\".*/\\1/' | awk '!seen[$0]++' | tr ' ' '_' | tr '\\n' ' '")
 stats data using 1:(strcol(2) eq "boxsim damped" ? $3 : NaN) nooutput name "D"
-colour(i) = word("#d62728 #1f77b4 #2ca02c #ff7f0e #9467bd #8c564b #e377c2 #7f7f7f #bcbd22 #17becf", i)
+colour(i) = word("#d62728 #1f77b4 #2ca02c #ff7f0e #9467bd #8c564b #e377c2 #7f7f7f #bcbd22 #17becf #393b79 #637939", i)
 label(e) = system("echo '".e."' | tr '_' ' '")
 # One engine's rows alone, so its points join into one line.
 rows(e) = "< grep -F '\"".label(e)."\"' ".data

@@ -26,6 +26,7 @@ void refuseOptions(const std::string& method, const TechniqueOptions& options,
       {!takesImpulseOptions && options.threads.has_value(), "threads"},
       {options.sleep.has_value(), "sleep"},
       {options.chatterDetection.has_value(), "chatter detection"},
+      {options.dampSupportedOnly.has_value(), "damp supported only"},
       {options.continuousCollision.has_value(), "continuous collision"},
       {options.impactPasses.has_value(), "impact passes"},
       {options.plausibilitySeed.has_value(), "plausibility seed"},
@@ -90,6 +91,7 @@ std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueO
     applyGeometricStability(options, params.useGeometricStability, params.geometricStability);
     if (options.sleep) params.sleep.enabled = *options.sleep;
     if (options.chatterDetection) params.sleep.chatterDetection = *options.chatterDetection;
+    if (options.dampSupportedOnly) params.damping.supportedOnly = *options.dampSupportedOnly;
     if (options.continuousCollision) params.continuousCollision.enabled = *options.continuousCollision;
     if (options.impactPasses) params.impactPasses = *options.impactPasses;
     if (options.integrator) params.impulse.integrator = *options.integrator;

@@ -34,6 +34,9 @@ struct TechniqueOptions {
   /// Chatter detected from history (\thesis{§6.3.1}; SleepParams::chatterDetection) of damped
   /// integration; empty: default (off).
   std::optional<bool> chatterDetection;
+  /// Damping of supported bodies only (DampingParams::supportedOnly) of damped integration;
+  /// empty: its default (off, \alg{DAMPENOBJECTS} as written).
+  std::optional<bool> dampSupportedOnly;
   /// Continuous collision detection for fast bodies of damped integration
   /// (continuous_collision.hpp); empty: default (off).
   std::optional<bool> continuousCollision;

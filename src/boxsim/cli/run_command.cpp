@@ -30,6 +30,7 @@ struct RunArgs {
   std::string geometricStability;  // off, thesis, under_load or empty (the method's default)
   std::string sleep;          // "on", "off" or empty (the method's default)
   std::string chatterDetection;  // "on", "off" or empty (the method's default)
+  std::string dampSupportedOnly;  // "on", "off" or empty (the method's default)
   std::string continuousCollision;  // "on", "off" or empty (the method's default)
   std::optional<int> impactPasses;  // empty: the method's default (0)
   std::string broadPhase;     // empty: the scene's choice
@@ -91,6 +92,7 @@ TechniqueOptions techniqueOptions(const RunArgs& args) {
     options.geometricStability = parseGeometricStabilityMode(args.geometricStability);
   if (!args.sleep.empty()) options.sleep = args.sleep == "on";
   if (!args.chatterDetection.empty()) options.chatterDetection = args.chatterDetection == "on";
+  if (!args.dampSupportedOnly.empty()) options.dampSupportedOnly = args.dampSupportedOnly == "on";
   if (!args.continuousCollision.empty())
     options.continuousCollision = args.continuousCollision == "on";
   options.impactPasses = args.impactPasses;
@@ -197,6 +199,11 @@ void addRunCommand(CLI::App& app) {
                   "Chatter detected from history (damped, thesis §6.3.1): a supported body whose "
                   "pose stays within 5% of its size for the time to sleep, its energy not "
                   "growing, falls asleep: on, off (default)")
+      ->check(CLI::IsMember({"on", "off"}));
+  cmd->add_option("--damp-supported-only", args->dampSupportedOnly,
+                  "DAMPENOBJECTS damps only bodies whose contacts reach down to the ground or "
+                  "another immovable body (damped): on, off (default: the thesis' rule, every "
+                  "body in contact, which slows boxes touching in free fall)")
       ->check(CLI::IsMember({"on", "off"}));
   cmd->add_option("--continuous-collision", args->continuousCollision,
                   "Continuous collision detection for fast bodies (damped): on, off (default)")

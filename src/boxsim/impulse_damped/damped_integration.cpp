@@ -54,6 +54,7 @@ std::map<std::string, std::string> DampedIntegrationStepper::parameters() const 
       {"aligned_deg", shortestText(d.alignedAngleDeg)},
       {"eps3_g_dt", shortestText(d.verticalVelocityEps)},
       {"damp_support_test", d.supportTest ? "on" : "off"},
+      {"damp_supported_only", d.supportedOnly ? "on" : "off"},
       {"eps4_deg_per_s", shortestText(d.tiltRateDegPerS)},
       {"eps5_g_dt", shortestText(d.linearSmallEps)},
       {"k5", shortestText(d.linearSmallFactor)},
@@ -213,7 +214,7 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
     const double restingMargin = restingContactMargin(world, margin, dt);
     const SupportTestParams supportParams{params_.sleep.supportNormalY,
                                           params_.damping.alignedAngleDeg, restingMargin, margin};
-    if (params_.damping.supportTest || friction) {
+    if (params_.damping.supportTest || friction || params_.damping.supportedOnly) {
       if (!posesUnchanged(world, lastPoses_))
         lastContacts_ = findContacts(world, restingMargin, candidatePairs(world, restingMargin),
                                      &gathering_.kept());
@@ -226,6 +227,10 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
                          params_.damping.linearSmallEps * world.gravity.norm() * dt);
       support = &slideVerdicts_;
     }
+    // DEVIATION(DAMPENOBJECTS L2): with supportedOnly, a body in contact is damped only when
+    // its contacts reach down to an immovable one (DampingParams::supportedOnly says why).
+    if (params_.damping.supportedOnly)
+      keepSupported(world, lastContacts_, touched, supportedParent_);
     dampenObjects(world, dt, touched, params_.damping, params_.impulse.integrator, *support,
                   &dampedPoses_);
   } else {
@@ -237,7 +242,7 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   // Kept as the next step's starting contacts, where the support test reads them.
   fixContacts(world, dt, margin);
   const std::vector<ContactManifold>& contacts = lastContacts_;
-  if (params_.damping.supportTest || friction) {
+  if (params_.damping.supportTest || friction || params_.damping.supportedOnly) {
     lastPoses_.resize(n);
     for (std::size_t i = 0; i < n; ++i) lastPoses_[i] = {world.bodies[i].s.x, world.bodies[i].s.q};
   }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 
 #include "boxsim/impulse_damped/predicted_positions.hpp"
@@ -49,6 +50,36 @@ void tiltTowardsYAxis(RigidBody& body, double maxAngle) {
   const Vec3 v = (halfSin / sine) * axis;
   body.s.q = (Quat(halfCos, v.x(), v.y(), v.z()) * body.s.q).normalized();
   body.updateDerived();
+}
+
+void keepSupported(const World& world, const std::vector<ContactManifold>& contacts,
+                   std::vector<char>& touched, std::vector<int>& parent) {
+  const std::size_t n = world.bodies.size();
+  // Node n stands for every immovable body: they hold up whatever rests on them.
+  parent.resize(n + 1);
+  for (std::size_t i = 0; i <= n; ++i) parent[i] = static_cast<int>(i);
+  const auto root = [&parent](std::size_t i) {
+    while (parent[i] != static_cast<int>(i)) {
+      parent[i] = parent[static_cast<std::size_t>(parent[i])];
+      i = static_cast<std::size_t>(parent[i]);
+    }
+    return i;
+  };
+  const auto node = [&world, n](int i) {
+    const std::size_t k = static_cast<std::size_t>(i);
+    return world.bodies[k].immovable ? n : k;
+  };
+  for (const ContactManifold& m : contacts) {
+    const std::size_t a = root(node(m.a)), b = root(node(m.b));
+    if (a == b) continue;
+    // The support's node stays a root, so a body's test below is one comparison.
+    if (a == n)
+      parent[b] = static_cast<int>(a);
+    else
+      parent[a] = static_cast<int>(b);
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (touched[i] && root(node(static_cast<int>(i))) != n) touched[i] = 0;
 }
 
 void dampMomenta(World& world, double dt, const std::vector<char>& touched,
