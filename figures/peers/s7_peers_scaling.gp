@@ -20,8 +20,8 @@ label(e) = system("echo '".e."' | tr '_' ' '")
 # One engine's rows alone, so its points join into one line.
 rows(e) = "< grep -F '\"".label(e)."\"' ".data
 do for [kind in "png svg"] {
-  if (kind eq "png") { set terminal pngcairo size 1100,580 enhanced font "DejaVu Sans,11" }
-  else { set terminal svg size 1100,580 enhanced font "DejaVu Sans,11" }
+  if (kind eq "png") { set terminal pngcairo size 1300,600 enhanced font "DejaVu Sans,11" }
+  else { set terminal svg size 1300,600 enhanced font "DejaVu Sans,11" }
   set output outdir.'/s7_peers_scaling.'.kind
   set title sprintf("Clump of n unit cubes, restitution 0, Δt = 1/60 s, one thread unless marked: ms per step over %s s\n{/*0.8 measured %s at %s}", seconds, stamp, commit)
   set grid
