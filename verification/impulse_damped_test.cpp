@@ -1004,7 +1004,7 @@ TEST_CASE("With impact passes a column of ten cubes landing at 17 m/s stops in t
 }
 
 TEST_CASE("With damping of supported bodies only, two cubes touching in free fall fall together "
-          "as one body; as written, DAMPENOBJECTS slows them",
+          "as one body, and as written DAMPENOBJECTS slows them",
           "[impulse_damped][damping]") {
   // Two unit cubes of 1 kg stacked face to face 19.5 m above the ground, at rest, fall for 1 s
   // (60 steps, nowhere near the ground). Nothing outside the pair acts on it but gravity, so its
