@@ -78,8 +78,9 @@ void keepSupported(const World& world, const std::vector<ContactManifold>& conta
     else
       parent[a] = static_cast<int>(b);
   }
+  // An immovable body's mark stays (its node is the support's); damping leaves it alone anyway.
   for (std::size_t i = 0; i < n; ++i)
-    if (touched[i] && root(node(static_cast<int>(i))) != n) touched[i] = 0;
+    if (touched[i] && !world.bodies[i].immovable && root(i) != n) touched[i] = 0;
 }
 
 void dampMomenta(World& world, double dt, const std::vector<char>& touched,

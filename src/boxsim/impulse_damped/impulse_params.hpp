@@ -172,12 +172,12 @@ struct DampingParams {
   /// DEVIATION(DAMPENOBJECTS L2): "has had a contact interaction" marks a body for damping
   /// whatever it touched, so boxes that touch each other in free fall are slowed down as if they
   /// lay on the ground: the frictionless 1000-cube clump of \thesis{Fig. 6.7} falls at 3.6 m/s
-  /// after 2 s instead of 19.6 m/s, and its highest cube is still 17 m up then. Momentum that
-  /// nothing outside a group of bodies can take away is taken away. With this on, only bodies
-  /// that a chain of contacts joins to an immovable body (the ground, or a sleeper standing in
-  /// for one) are damped, read from the contacts the step starts from (keepSupported): every
-  /// body of a heap, stack or slide on the ground is damped as written, and a group in flight
-  /// keeps its momentum until it lands. Off: \alg{A.2} as written.
+  /// after 2 s instead of 19.6 m/s, and its highest cube is still 17 m up then: the damping
+  /// takes from a group in flight momentum that nothing outside it acts on. With this on, only
+  /// bodies that a chain of contacts joins to an immovable body (the ground, or a sleeper
+  /// standing in for one) are damped, read from the contacts the step starts from
+  /// (keepSupported): every body of a heap, stack or slide on the ground is damped as written,
+  /// and a group in flight keeps its momentum until it lands. Off: \alg{A.2} as written.
   bool supportedOnly = false;
   /// λ3, 1/s: the angular momentum of such a body then decays at this rate (k3,
   /// \alg{DAMPENOBJECTS L9}): 20/s, a tenth of a second to stop rocking.
