@@ -1081,7 +1081,7 @@ TEST_CASE("keepSupported unmarks the bodies whose contacts do not reach an immov
                                                  contact(5, 6)};
   std::vector<char> touched(8, 1);
   touched[7] = 0;
-  std::vector<int> room;
+  ContactIslands room;
   keepSupported(world, contacts, touched, room);
   CHECK(touched == std::vector<char>{1, 1, 1, 0, 0, 1, 1, 0});
 }

@@ -9,11 +9,15 @@
 namespace boxsim {
 
 void ContactIslands::reset(const std::vector<char>& movable) {
-  const std::size_t n = movable.size();
+  reset(movable.size());
+  movable_.assign(movable.begin(), movable.end());
+}
+
+void ContactIslands::reset(std::size_t n) {
   parent_.resize(n);
   std::iota(parent_.begin(), parent_.end(), 0);
   size_.assign(n, 1);
-  movable_.assign(movable.begin(), movable.end());
+  movable_.assign(n, 1);
   settled_.assign(n, 0);
   changed_.assign(n, 0);
 }

@@ -56,12 +56,16 @@ class ContactIslands {
   /// body i as one no impulse moves within the passes, which join() never joins (a sleeper,
   /// which may wake, counts as movable: the file comment).
   void reset(const std::vector<char>& movable);
+  /// One island per body for n bodies, every one movable, none settled.
+  void reset(std::size_t n);
   /// Joins the islands of bodies a and b (indices below the reset's size); does nothing when
   /// either is immovable. The joined island is settled only if both were.
   void join(int a, int b);
   /// Points every body straight at its island's root, so that the lookups of a pass (a few
   /// per contact) take one step until the next join.
   void flatten();
+  /// Whether bodies a and b are in one island.
+  bool together(int a, int b) { return root(a) == root(b); }
   /// Whether body i is movable and its island settled.
   bool settled(int i) { return movable_[static_cast<std::size_t>(i)] && settled_[root(i)]; }
   /// Marks the island of body i (if movable) as changed in the current pass.

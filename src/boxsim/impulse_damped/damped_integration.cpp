@@ -230,7 +230,7 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
     // DEVIATION(DAMPENOBJECTS L2): with supportedOnly, a body in contact is damped only when
     // its contacts reach down to an immovable one (DampingParams::supportedOnly says why).
     if (params_.damping.supportedOnly)
-      keepSupported(world, lastContacts_, touched, supportedParent_);
+      keepSupported(world, lastContacts_, touched, supportedIslands_);
     dampenObjects(world, dt, touched, params_.damping, params_.impulse.integrator, *support,
                   &dampedPoses_);
   } else {

@@ -229,7 +229,7 @@ class DampedIntegrationStepper final : public Stepper {
   // contacts found again.
   std::vector<ContactManifold> lastContacts_;
   std::vector<std::pair<Vec3, Quat>> lastPoses_;
-  std::vector<int> supportedParent_;  ///< keepSupported's working room
+  ContactIslands supportedIslands_;  ///< keepSupported's working room
   /// The working lists of a step, kept from step to step for their room: the bodies a step's
   /// passes touched (DAMPENOBJECTS' colliding bodies), and fixContacts'.
   std::vector<char> touched_;

@@ -53,34 +53,19 @@ void tiltTowardsYAxis(RigidBody& body, double maxAngle) {
 }
 
 void keepSupported(const World& world, const std::vector<ContactManifold>& contacts,
-                   std::vector<char>& touched, std::vector<int>& parent) {
-  const std::size_t n = world.bodies.size();
+                   std::vector<char>& touched, ContactIslands& islands) {
+  const int n = static_cast<int>(world.bodies.size());
   // Node n stands for every immovable body: they hold up whatever rests on them.
-  parent.resize(n + 1);
-  for (std::size_t i = 0; i <= n; ++i) parent[i] = static_cast<int>(i);
-  const auto root = [&parent](std::size_t i) {
-    while (parent[i] != static_cast<int>(i)) {
-      parent[i] = parent[static_cast<std::size_t>(parent[i])];
-      i = static_cast<std::size_t>(parent[i]);
-    }
-    return i;
-  };
+  islands.reset(static_cast<std::size_t>(n) + 1);
   const auto node = [&world, n](int i) {
-    const std::size_t k = static_cast<std::size_t>(i);
-    return world.bodies[k].immovable ? n : k;
+    return world.bodies[static_cast<std::size_t>(i)].immovable ? n : i;
   };
-  for (const ContactManifold& m : contacts) {
-    const std::size_t a = root(node(m.a)), b = root(node(m.b));
-    if (a == b) continue;
-    // The support's node stays a root, so a body's test below is one comparison.
-    if (a == n)
-      parent[b] = static_cast<int>(a);
-    else
-      parent[a] = static_cast<int>(b);
+  for (const ContactManifold& m : contacts) islands.join(node(m.a), node(m.b));
+  // An immovable body's mark stays; damping leaves it alone anyway.
+  for (int i = 0; i < n; ++i) {
+    const std::size_t k = static_cast<std::size_t>(i);
+    if (touched[k] && !world.bodies[k].immovable && !islands.together(i, n)) touched[k] = 0;
   }
-  // An immovable body's mark stays (its node is the support's); damping leaves it alone anyway.
-  for (std::size_t i = 0; i < n; ++i)
-    if (touched[i] && !world.bodies[i].immovable && root(i) != n) touched[i] = 0;
 }
 
 void dampMomenta(World& world, double dt, const std::vector<char>& touched,

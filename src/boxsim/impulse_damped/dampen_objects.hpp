@@ -12,6 +12,7 @@
 #include "boxsim/collision/xz_hull.hpp"
 #include "boxsim/core/world.hpp"
 #include "boxsim/impulse_damped/centre_over_support.hpp"
+#include "boxsim/impulse_damped/contact_islands.hpp"
 #include "boxsim/impulse_damped/impulse_params.hpp"
 #include "boxsim/impulse_damped/predicted_positions.hpp"
 
@@ -105,13 +106,13 @@ void markFrictionSlides(const World& world, const std::vector<ContactManifold>& 
                         const SupportTestParams& params = {},
                         double dragSpeed = std::numeric_limits<double>::infinity());
 
-/// DampingParams::supportedOnly: unmarks in `touched` (one flag per body) every body that no
-/// chain of `contacts` joins to an immovable body of `world`, so that damping leaves it alone.
-/// A union–find over the contacts with every immovable body as one node (path halving, joined
-/// in the contacts' order: deterministic); O(n + m α) for n bodies and m contacts. `parent` is
-/// working room (n + 1 entries), kept by a caller that asks every step.
+/// DampingParams::supportedOnly: unmarks in `touched` (one flag per body) every movable body
+/// that no chain of `contacts` joins to an immovable body of `world`, so that damping leaves it
+/// alone. The islands of the contacts (ContactIslands, deterministic) with every immovable body
+/// as one node; O(n + m α) for n bodies and m contacts. `islands` is working room, kept by a
+/// caller that asks every step.
 void keepSupported(const World& world, const std::vector<ContactManifold>& contacts,
-                   std::vector<char>& touched, std::vector<int>& parent);
+                   std::vector<char>& touched, ContactIslands& islands);
 
 /// Scales the momenta of the bodies marked `touched` (one flag per body) as
 /// \alg{DAMPENOBJECTS L1-L21}, with the thresholds of `params` turned into momenta for each body:
