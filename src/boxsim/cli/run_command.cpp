@@ -28,10 +28,11 @@ struct RunArgs {
   std::string contactNormal;  // empty: the method's default
   std::string contactGathering;  // empty: the method's default
   std::string geometricStability;  // off, thesis, under_load or empty (the method's default)
-  std::string sleep;          // "on", "off" or empty (the method's default)
-  std::string chatterDetection;  // "on", "off" or empty (the method's default)
-  std::string dampSupportedOnly;  // "on", "off" or empty (the method's default)
-  std::string continuousCollision;  // "on", "off" or empty (the method's default)
+  // Switches given as on or off (CLI11 reads them as booleans); empty: the method's default.
+  std::optional<bool> sleep;
+  std::optional<bool> chatterDetection;
+  std::optional<bool> dampSupportedOnly;
+  std::optional<bool> continuousCollision;
   std::optional<int> impactPasses;  // empty: the method's default (0)
   std::string broadPhase;     // empty: the scene's choice
   std::optional<unsigned long> plausibilitySeed;
@@ -90,11 +91,10 @@ TechniqueOptions techniqueOptions(const RunArgs& args) {
     options.contactGathering = parseContactGathering(args.contactGathering);
   if (!args.geometricStability.empty())
     options.geometricStability = parseGeometricStabilityMode(args.geometricStability);
-  if (!args.sleep.empty()) options.sleep = args.sleep == "on";
-  if (!args.chatterDetection.empty()) options.chatterDetection = args.chatterDetection == "on";
-  if (!args.dampSupportedOnly.empty()) options.dampSupportedOnly = args.dampSupportedOnly == "on";
-  if (!args.continuousCollision.empty())
-    options.continuousCollision = args.continuousCollision == "on";
+  options.sleep = args.sleep;
+  options.chatterDetection = args.chatterDetection;
+  options.dampSupportedOnly = args.dampSupportedOnly;
+  options.continuousCollision = args.continuousCollision;
   options.impactPasses = args.impactPasses;
   options.plausibilitySeed = args.plausibilitySeed;
   options.threads = args.threads;
