@@ -173,6 +173,10 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   const bool friction = world.hasFriction();
   // A frictionless world keeps no friction sums: contactImpulse would not read them.
   FrictionTotals* const totals = friction ? &frictionTotals_ : nullptr;
+  // DAMPENOBJECTS reads the contacts the step starts from (the support test, friction's slides,
+  // the supported bodies): they are the last step's, kept with the poses they are for.
+  const bool startingContacts =
+      params_.damping.supportTest || friction || params_.damping.supportedOnly;
   // The narrow phases so far, for the profile's count of this step's.
   const long passTestsBefore = gathering_.passNarrowPhases();
   const long axisChecksBefore = gathering_.passAxisChecks() + gathering_.kept().axisChecks();
@@ -214,7 +218,7 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
     const double restingMargin = restingContactMargin(world, margin, dt);
     const SupportTestParams supportParams{params_.sleep.supportNormalY,
                                           params_.damping.alignedAngleDeg, restingMargin, margin};
-    if (params_.damping.supportTest || friction || params_.damping.supportedOnly) {
+    if (startingContacts) {
       if (!posesUnchanged(world, lastPoses_))
         lastContacts_ = findContacts(world, restingMargin, candidatePairs(world, restingMargin),
                                      &gathering_.kept());
@@ -242,7 +246,7 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   // Kept as the next step's starting contacts, where the support test reads them.
   fixContacts(world, dt, margin);
   const std::vector<ContactManifold>& contacts = lastContacts_;
-  if (params_.damping.supportTest || friction || params_.damping.supportedOnly) {
+  if (startingContacts) {
     lastPoses_.resize(n);
     for (std::size_t i = 0; i < n; ++i) lastPoses_[i] = {world.bodies[i].s.x, world.bodies[i].s.q};
   }
