@@ -550,6 +550,47 @@ TEST_CASE("A box at rest in a frictional heap does not report itself falling: sh
   CHECK(without > 3 * with);
 }
 
+TEST_CASE("A frictional pyramid at rest ends its steps at rest: a box its friction holds keeps no spin the snap holds still, and one collision pass finds nothing to do",
+          "[friction][impulse_damped]") {
+  // The pyramid of Fig. 6.6 (a base of 10 unit cubes, one deep) with μ = 0.5, sleeping off so
+  // that every step runs. As written (restHeld off) boxes of its middle rows end every step with
+  // a spin about the pyramid's depth axis that the passes give back whole, just above ε8 after
+  // k7, while the snap holds their poses: they never turn, and every step runs all five
+  // collision passes. With the deviation they end each step at rest, and the first collision
+  // pass, with nothing approaching, is the last (the frictionless pyramid's count).
+  const auto run = [](bool restHeld, int& spinning, int& passes) {
+    Scene scene = parseScene(R"({"friction": 0.5, "ground": {"half_size": 20},
+        "builders": [{"type": "pyramid", "base": 10, "size": 1.0, "mass": 1.0}]})",
+                             "pyramid10_mu.json");
+    DampedIntegrationParams p;
+    p.sleep.enabled = false;
+    p.damping.restHeld = restHeld;
+    DampedIntegrationStepper stepper(p);
+    std::vector<Vec3> start;
+    for (const RigidBody& body : scene.world.bodies) start.push_back(body.s.x);
+    spinning = 0;
+    passes = 0;
+    for (int k = 1; k <= 90; ++k) {
+      const StepStats stats = stepper.step(scene.world, kDt);
+      if (k <= 60) continue;  // a second to come to rest
+      passes = std::max(passes, stats.passes);
+      for (const RigidBody& body : scene.world.bodies)
+        if (!body.immovable && !(body.v.isZero(0.0) && body.omega.isZero(0.0))) ++spinning;
+    }
+    // Either way the pyramid stands where it was built.
+    for (std::size_t i = 0; i < scene.world.bodies.size(); ++i)
+      CHECK((scene.world.bodies[i].s.x - start[i]).norm() < 1e-3);
+  };
+  int spinning = 0, passes = 0;
+  run(false, spinning, passes);
+  CHECK(spinning > 0);  // the premise: as written, some box keeps a velocity it never moves by
+  CHECK(passes == DampedIntegrationParams{}.impulse.collisionIterations +
+                      DampedIntegrationParams{}.impulse.contactIterations);
+  run(true, spinning, passes);
+  CHECK(spinning == 0);
+  CHECK(passes == 1 + DampedIntegrationParams{}.impulse.contactIterations);
+}
+
 TEST_CASE("A pile of 125 tumbling cubes settles with its boxes overlapping by millimetres, with and without friction",
           "[friction][impulse_damped][chatter]") {
   // 125 cubes dropped low, tumbling, at e = 0 (a small pile343.json). Sharing side contacts in
