@@ -419,11 +419,10 @@ DampingStats dampenObjects(World& world, double dt, const std::vector<char>& tou
         deltaRotation < params.rotationSnapEps * step2 / ell) {
       restorePose(o, old[i]);
       ++stats.snapped;
-      // DEVIATION(DAMPENOBJECTS L26-L28): a body its friction holds (as the tests above
-      // require) and the rests left no linear momentum ends the step at rest
+      // DEVIATION(DAMPENOBJECTS L26-L28): a body its friction holds (only frictional bodies
+      // are ever held) and the rests left no linear momentum ends the step at rest
       // (DampingParams::restHeld).
-      if (params.restHeld && !o.friction.frictionless() && !support.empty() &&
-          o.s.P.isZero(0.0)) {
+      if (params.restHeld && !support.empty() && support[i].held && o.s.P.isZero(0.0)) {
         o.s.L.setZero();
         o.updateVelocities();
       }
