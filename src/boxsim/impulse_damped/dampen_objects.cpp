@@ -417,15 +417,13 @@ DampingStats dampenObjects(World& world, double dt, const std::vector<char>& tou
     const double deltaRotation = quaternionDistance(o.s.q, old[i].q);
     if (deltaPosition < params.positionSnapEps * step2 &&
         deltaRotation < params.rotationSnapEps * step2 / ell) {
-      restorePose(o, old[i]);
-      ++stats.snapped;
       // DEVIATION(DAMPENOBJECTS L26-L28): a body its friction holds (only frictional bodies
       // are ever held) and the rests left no linear momentum ends the step at rest
-      // (DampingParams::restHeld).
-      if (params.restHeld && !support.empty() && support[i].held && o.s.P.isZero(0.0)) {
+      // (DampingParams::restHeld); the velocities follow in restorePose.
+      if (params.restHeld && !support.empty() && support[i].held && o.s.P.isZero(0.0))
         o.s.L.setZero();
-        o.updateVelocities();
-      }
+      restorePose(o, old[i]);
+      ++stats.snapped;
     }
   }
   return stats;
