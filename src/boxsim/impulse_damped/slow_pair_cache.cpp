@@ -14,6 +14,8 @@ namespace boxsim {
 void SlowPairCache::clear() {
   pairs_.clear();
   reaches_.clear();
+  predicted_.clear();
+  points_.clear();
   exactManifolds_.clear();
 }
 
@@ -50,17 +52,25 @@ int SlowPairCache::add(const World& world, const StepBodies& bodies, int i, int 
   pair.contact = normals.contactOf(world, m, false);
   pair.manifold = m;
   PairReach reach{i, j, 0};
+  PredictedPair& predicted = predicted_.emplace_back();
+  predicted.normal = m.normal;
+  predicted.contactNormal = pair.contact.normal;
+  predicted.friction = pair.contact.friction;
+  predicted.patchRadius = pair.contact.patch.radius;
+  predicted.a = pair.contact.a;
+  predicted.b = pair.contact.b;
+  predicted.first = static_cast<int>(points_.size());
   for (int k = 0; k < m.count; ++k) {
     const ContactPoint& p = m.points[k];
     const Vec3 ra = p.position - xa, rb = p.position - xb;
-    pair.points[pair.count++] = CachedPoint{p.position, p.depth,       ra,          rb,
-                                            ra.cross(m.normal), rb.cross(m.normal),
-                                            m.normal.dot(ra),   m.normal.dot(rb)};
+    points_.push_back(CachedPoint{p.position, p.depth, ra, rb, ra.cross(m.normal),
+                                  rb.cross(m.normal), m.normal.dot(ra), m.normal.dot(rb)});
     reach.deepest = k == 0 ? p.depth : std::max(reach.deepest, p.depth);
     reach.leverA = std::max(reach.leverA, ra.norm());
     reach.leverB = std::max(reach.leverB, rb.norm());
   }
-  reach.count = pair.count;
+  predicted.count = m.count;
+  reach.count = m.count;
   reaches_.push_back(reach);
   return static_cast<int>(pairs_.size()) - 1;
 }
@@ -85,14 +95,15 @@ bool SlowPairCache::mayTouch(const StepBodies& bodies, const PairReach& reach, d
          linear * linear;
 }
 
-bool SlowPairCache::predictedContact(const World& world, const CachedPair& pair,
-                                     const Vec3& gravityStep, double dt, double margin,
-                                     ImpulseContact& contact) const {
-  const RigidBody& a = world.bodies[pair.contact.a];
-  const RigidBody& b = world.bodies[pair.contact.b];
+bool SlowPairCache::predictedContact(const World& world, std::size_t k, const Vec3& gravityStep,
+                                     double dt, double margin, ImpulseContact& contact) const {
+  const PredictedPair& pair = predicted_[k];
+  const CachedPoint* points = points_.data() + pair.first;
+  const RigidBody& a = world.bodies[pair.a];
+  const RigidBody& b = world.bodies[pair.b];
   const Vec3 ua = a.immovable ? a.v : Vec3(a.v + gravityStep);
   const Vec3 ub = b.immovable ? b.v : Vec3(b.v + gravityStep);
-  const Vec3& n = pair.manifold.normal;
+  const Vec3& n = pair.normal;
   const double linear = n.dot(ua - ub);
   // n · (ω × (ω × r)) = (n · ω)(ω · r) - |ω|² (n · r), with n · r cached per point.
   const double nwa = n.dot(a.omega), nwb = n.dot(b.omega);
@@ -102,7 +113,7 @@ bool SlowPairCache::predictedContact(const World& world, const CachedPair& pair,
   std::array<bool, 4> keptPoint{};
   double deepest = 0.0;
   for (int i = 0; i < pair.count; ++i) {
-    const CachedPoint& p = pair.points[i];
+    const CachedPoint& p = points[i];
     // n · (ω × r) = ω · (r × n).
     const double turning = a.omega.dot(p.raCrossN) - b.omega.dot(p.rbCrossN);
     const double centripetal = (nwa * a.omega.dot(p.ra) - wa2 * p.nDotRa) -
@@ -117,22 +128,22 @@ bool SlowPairCache::predictedContact(const World& world, const CachedPair& pair,
   if (kept == 0) return false;
   // The cached contact's bodies, normal and friction; the rest is this pass' (a frictionless
   // contact's patch stays empty, its offsets unread).
-  contact.a = pair.contact.a;
-  contact.b = pair.contact.b;
-  contact.normal = pair.contact.normal;
-  contact.friction = pair.contact.friction;
+  contact.a = pair.a;
+  contact.b = pair.b;
+  contact.normal = pair.contactNormal;
+  contact.friction = pair.friction;
   contact.patch.count = 0;
-  contact.patch.radius = pair.contact.patch.radius;
+  contact.patch.radius = pair.patchRadius;
   contact.point = sum / static_cast<double>(kept);
   if (!contact.friction.frictionless()) {
     // The friction patch is the kept points, about the new centroid, in the order around the
     // patch that the found contact gave them (a subset of a convex outline stays one).
-    const ContactPatch& found = pair.contact.patch;
+    const ContactPatch& found = pairs_[k].contact.patch;
     contact.patch.count = 0;
-    for (int k = 0; k < found.count; ++k) {
-      const int i = found.pointOf[k];
+    for (int f = 0; f < found.count; ++f) {
+      const int i = found.pointOf[f];
       if (!keptPoint[i]) continue;
-      contact.patch.offsets[contact.patch.count] = pair.points[i].position - contact.point;
+      contact.patch.offsets[contact.patch.count] = points[i].position - contact.point;
       contact.patch.pointOf[contact.patch.count++] = i;
     }
   }

@@ -72,7 +72,7 @@ class SlowPairCache {
                    ContactNormalTracker& normals, KeptNarrowPhase& kept, ImpulseContact& contact);
   /// Cached pair k is gathered as written in this pass (one of its bodies turned fast): what
   /// it remembered of its face comes after anything remembered before.
-  void forgetFace(std::size_t k) { pairs_[k].remembered = false; }
+  void forgetFace(std::size_t k) { predicted_[k].remembered = false; }
 
  private:
   /// One manifold point with the parts of its predicted depth that do not change in a step.
@@ -86,15 +86,27 @@ class SlowPairCache {
     double nDotRa;     ///< n · r_a, m
     double nDotRb;     ///< n · r_b, m
   };
-  /// One cached pair: the contact as COLLIDE will see it and its manifold's points.
+  /// What every pass reads of a cached pair to predict its contact, kept apart from the rest
+  /// (CachedPair) and its points kept one after another in points_: a pass walks the pairs in
+  /// order and reads only these, a few cache lines a pair, not the kilobyte a whole pair takes.
+  struct PredictedPair {
+    Vec3 normal;          ///< the manifold's normal, a to b (the direction depths are measured in)
+    Vec3 contactNormal;   ///< the normal model's normal for the contact
+    Friction friction;    ///< the contact's
+    double patchRadius;   ///< m, the found contact's patch radius
+    int a;                ///< body index
+    int b;                ///< body index
+    int first;            ///< its first point in points_
+    int count;            ///< its points
+    bool remembered = false;  ///< its face was handed to the normal model since it last was fast
+  };
+  /// One cached pair: the contact as COLLIDE will see it and its manifold (what a pass reads of
+  /// it is in PredictedPair).
   struct CachedPair {
     ImpulseContact contact;        ///< bodies and the model's normal
     /// The manifold at the current pose (its normal, a to b, is the direction the depths are
     /// measured in; its kind and normal name the face the normal model remembers).
     ContactManifold manifold;
-    std::array<CachedPoint, 4> points;
-    int count = 0;
-    bool remembered = false;  ///< its face was handed to the normal model since it last was fast
     /// A pair with no point to predict from (count 0) gets the narrow phase where its slow
     /// bodies stand, the same in every pass of the step: its manifold, found in the first pass
     /// that needs it (index into exactManifolds_), or kExactUnknown.
@@ -107,12 +119,14 @@ class SlowPairCache {
   static bool mayTouch(const StepBodies& bodies, const PairReach& reach, double margin);
   /// The Taylor-predicted contact of a cached pair of slow bodies; false when no point is
   /// within the margin.
-  bool predictedContact(const World& world, const CachedPair& pair, const Vec3& gravityStep,
-                        double dt, double margin, ImpulseContact& contact) const;
+  bool predictedContact(const World& world, std::size_t k, const Vec3& gravityStep, double dt,
+                        double margin, ImpulseContact& contact) const;
 
   bool pairReach_;
   std::vector<CachedPair> pairs_;
   std::vector<PairReach> reaches_;  ///< per entry of pairs_, in its order
+  std::vector<PredictedPair> predicted_;  ///< per entry of pairs_, in its order
+  std::vector<CachedPoint> points_;  ///< the pairs' points, pair after pair (PredictedPair::first)
   std::vector<ContactManifold> exactManifolds_;  ///< the pairs' narrow phases (CachedPair::exact)
 };
 
@@ -127,15 +141,16 @@ bool SlowPairCache::passContact(const World& world, const StepBodies& bodies, st
   // Too far apart for any point to come within the margin: no contact, as predictedContact
   // would find, without reading the points.
   if (reach.count > 0 && !mayTouch(bodies, reach, margin)) return false;
-  CachedPair& pair = pairs_[k];
-  if (pair.count > 0) {
-    if (!predictedContact(world, pair, gravityStep, dt, margin, contact)) return false;
+  bool& remembered = predicted_[k].remembered;
+  if (reach.count > 0) {
+    if (!predictedContact(world, k, gravityStep, dt, margin, contact)) return false;
     // The bodies have not moved since the cache was built: its manifold names the face, the
     // same in every pass, so remembering it once is remembering it every pass.
-    if (!pair.remembered) normals.remember(world, pair.manifold);
-    pair.remembered = true;
+    if (!remembered) normals.remember(world, pairs_[k].manifold);
+    remembered = true;
     return true;
   }
+  CachedPair& pair = pairs_[k];
   // No point to predict from: the narrow phase where the two slow bodies stand. Neither body
   // moved since the first pass that looked: the narrow phase answers as then.
   if (pair.exact == kExactUnknown) {
@@ -148,8 +163,8 @@ bool SlowPairCache::passContact(const World& world, const StepBodies& bodies, st
   const ContactManifold& m = exactManifolds_[static_cast<std::size_t>(pair.exact)];
   if (m.count == 0) return false;
   // Its face is remembered once while it stays slow, as the predicted pairs'.
-  contact = normals.contactOf(world, m, !pair.remembered);
-  pair.remembered = true;
+  contact = normals.contactOf(world, m, !remembered);
+  remembered = true;
   return true;
 }
 
