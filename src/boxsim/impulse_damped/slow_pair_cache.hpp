@@ -117,8 +117,8 @@ class SlowPairCache {
   /// Whether a point of the cached pair `reach` may come within `margin` (m) in this pass:
   /// false only when predictedContact would find none.
   static bool mayTouch(const StepBodies& bodies, const PairReach& reach, double margin);
-  /// The Taylor-predicted contact of a cached pair of slow bodies; false when no point is
-  /// within the margin.
+  /// The Taylor-predicted contact of cached pair k (its PredictedPair and points); false when
+  /// no point is within `margin` (m).
   bool predictedContact(const World& world, std::size_t k, const Vec3& gravityStep, double dt,
                         double margin, ImpulseContact& contact) const;
 
