@@ -47,18 +47,16 @@ int SlowPairCache::add(const World& world, const StepBodies& bodies, int i, int 
   const Vec3& xa = bodyI.s.x;
   const Vec3& xb = bodyJ.s.x;
   // The normal model's choice now; its face is remembered only in the passes the pair touches.
-  // Made in place: a cached pair is about a kilobyte.
   CachedPair& pair = pairs_.emplace_back();
-  pair.contact = normals.contactOf(world, m, false);
+  const ImpulseContact found = normals.contactOf(world, m, false);
+  pair.patch = found.patch;
   pair.manifold = m;
-  PairReach reach{i, j, 0};
+  PairReach reach{i, j, m.count};
   PredictedPair& predicted = predicted_.emplace_back();
   predicted.normal = m.normal;
-  predicted.contactNormal = pair.contact.normal;
-  predicted.friction = pair.contact.friction;
-  predicted.patchRadius = pair.contact.patch.radius;
-  predicted.a = pair.contact.a;
-  predicted.b = pair.contact.b;
+  predicted.contactNormal = found.normal;
+  predicted.friction = found.friction;
+  predicted.patchRadius = found.patch.radius;
   predicted.first = static_cast<int>(points_.size());
   for (int k = 0; k < m.count; ++k) {
     const ContactPoint& p = m.points[k];
@@ -69,8 +67,6 @@ int SlowPairCache::add(const World& world, const StepBodies& bodies, int i, int 
     reach.leverA = std::max(reach.leverA, ra.norm());
     reach.leverB = std::max(reach.leverB, rb.norm());
   }
-  predicted.count = m.count;
-  reach.count = m.count;
   reaches_.push_back(reach);
   return static_cast<int>(pairs_.size()) - 1;
 }
@@ -95,12 +91,13 @@ bool SlowPairCache::mayTouch(const StepBodies& bodies, const PairReach& reach, d
          linear * linear;
 }
 
-bool SlowPairCache::predictedContact(const World& world, std::size_t k, const Vec3& gravityStep,
-                                     double dt, double margin, ImpulseContact& contact) const {
+bool SlowPairCache::predictedContact(const World& world, std::size_t k, const PairReach& reach,
+                                     const Vec3& gravityStep, double dt, double margin,
+                                     ImpulseContact& contact) const {
   const PredictedPair& pair = predicted_[k];
   const CachedPoint* points = points_.data() + pair.first;
-  const RigidBody& a = world.bodies[pair.a];
-  const RigidBody& b = world.bodies[pair.b];
+  const RigidBody& a = world.bodies[reach.a];
+  const RigidBody& b = world.bodies[reach.b];
   const Vec3 ua = a.immovable ? a.v : Vec3(a.v + gravityStep);
   const Vec3 ub = b.immovable ? b.v : Vec3(b.v + gravityStep);
   const Vec3& n = pair.normal;
@@ -112,7 +109,7 @@ bool SlowPairCache::predictedContact(const World& world, std::size_t k, const Ve
   int kept = 0;
   std::array<bool, 4> keptPoint{};
   double deepest = 0.0;
-  for (int i = 0; i < pair.count; ++i) {
+  for (int i = 0; i < reach.count; ++i) {
     const CachedPoint& p = points[i];
     // n · (ω × r) = ω · (r × n).
     const double turning = a.omega.dot(p.raCrossN) - b.omega.dot(p.rbCrossN);
@@ -128,8 +125,8 @@ bool SlowPairCache::predictedContact(const World& world, std::size_t k, const Ve
   if (kept == 0) return false;
   // The cached contact's bodies, normal and friction; the rest is this pass' (a frictionless
   // contact's patch stays empty, its offsets unread).
-  contact.a = pair.a;
-  contact.b = pair.b;
+  contact.a = reach.a;
+  contact.b = reach.b;
   contact.normal = pair.contactNormal;
   contact.friction = pair.friction;
   contact.patch.count = 0;
@@ -138,7 +135,7 @@ bool SlowPairCache::predictedContact(const World& world, std::size_t k, const Ve
   if (!contact.friction.frictionless()) {
     // The friction patch is the kept points, about the new centroid, in the order around the
     // patch that the found contact gave them (a subset of a convex outline stays one).
-    const ContactPatch& found = pairs_[k].contact.patch;
+    const ContactPatch& found = pairs_[k].patch;
     contact.patch.count = 0;
     for (int f = 0; f < found.count; ++f) {
       const int i = found.pointOf[f];

@@ -23,9 +23,8 @@
 
 namespace boxsim {
 
-/// What a pass reads of a cached pair before its points, kept apart from them (a cached pair
-/// is about a kilobyte, and most pairs of a pile stop here): its bodies and how near its points
-/// can come.
+/// What a pass reads of a cached pair before its points, kept apart from them (most pairs of a
+/// pile stop here): its bodies and how near its points can come.
 struct PairReach {
   int a;                 ///< body index, a < b
   int b;                 ///< body index
@@ -86,26 +85,24 @@ class SlowPairCache {
     double nDotRa;     ///< n · r_a, m
     double nDotRb;     ///< n · r_b, m
   };
-  /// What every pass reads of a cached pair to predict its contact, kept apart from the rest
-  /// (CachedPair) and its points kept one after another in points_: a pass walks the pairs in
-  /// order and reads only these, a few cache lines a pair, not the kilobyte a whole pair takes.
+  /// What every pass reads of a cached pair to predict its contact besides its PairReach (its
+  /// bodies and point count), kept apart from the rest (CachedPair) and its points kept one
+  /// after another in points_: a pass walks the pairs in order and reads only these, a few
+  /// cache lines a pair.
   struct PredictedPair {
     Vec3 normal;          ///< the manifold's normal, a to b (the direction depths are measured in)
     Vec3 contactNormal;   ///< the normal model's normal for the contact
     Friction friction;    ///< the contact's
     double patchRadius;   ///< m, the found contact's patch radius
-    int a;                ///< body index
-    int b;                ///< body index
     int first;            ///< its first point in points_
-    int count;            ///< its points
     bool remembered = false;  ///< its face was handed to the normal model since it last was fast
   };
-  /// One cached pair: the contact as COLLIDE will see it and its manifold (what a pass reads of
-  /// it is in PredictedPair).
+  /// One cached pair: what only friction and the normal model read of it.
   struct CachedPair {
-    ImpulseContact contact;        ///< bodies and the model's normal
-    /// The manifold at the current pose (its normal, a to b, is the direction the depths are
-    /// measured in; its kind and normal name the face the normal model remembers).
+    /// The found contact's patch (with friction): the order of the points around it.
+    ContactPatch patch;
+    /// The manifold at the current pose (its kind and normal name the face the normal model
+    /// remembers).
     ContactManifold manifold;
     /// A pair with no point to predict from (count 0) gets the narrow phase where its slow
     /// bodies stand, the same in every pass of the step: its manifold, found in the first pass
@@ -117,10 +114,11 @@ class SlowPairCache {
   /// Whether a point of the cached pair `reach` may come within `margin` (m) in this pass:
   /// false only when predictedContact would find none.
   static bool mayTouch(const StepBodies& bodies, const PairReach& reach, double margin);
-  /// The Taylor-predicted contact of cached pair k (its PredictedPair and points); false when
-  /// no point is within `margin` (m).
-  bool predictedContact(const World& world, std::size_t k, const Vec3& gravityStep, double dt,
-                        double margin, ImpulseContact& contact) const;
+  /// The Taylor-predicted contact of cached pair k (`reach`, its PredictedPair and points);
+  /// false when no point is within `margin` (m).
+  bool predictedContact(const World& world, std::size_t k, const PairReach& reach,
+                        const Vec3& gravityStep, double dt, double margin,
+                        ImpulseContact& contact) const;
 
   bool pairReach_;
   std::vector<CachedPair> pairs_;
@@ -143,7 +141,7 @@ bool SlowPairCache::passContact(const World& world, const StepBodies& bodies, st
   if (reach.count > 0 && !mayTouch(bodies, reach, margin)) return false;
   bool& remembered = predicted_[k].remembered;
   if (reach.count > 0) {
-    if (!predictedContact(world, k, gravityStep, dt, margin, contact)) return false;
+    if (!predictedContact(world, k, reach, gravityStep, dt, margin, contact)) return false;
     // The bodies have not moved since the cache was built: its manifold names the face, the
     // same in every pass, so remembering it once is remembering it every pass.
     if (!remembered) normals.remember(world, pairs_[k].manifold);
