@@ -32,7 +32,8 @@
 /// settling heap, clump1000_e0_pile the second after 2 s of the 1000-cube clump at e = 0, when
 /// it piles up on the ground; pile343_settling_e09 is the heap at e = 0.9. The 10 000-cube
 /// clump of bench/peers, at e = 0.9 and 0, times ten steps from 1.5 s, when its lowest layers
-/// land. Each figure is the mean over its window, not a median over steps.
+/// land. Each figure is the mean over its window, not a median over steps. The cases ending in
+/// _2threads are the dense ones on two threads (ImpulseParams::threads).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -202,9 +203,10 @@ struct TimedCase {
   }
 };
 
-DampedIntegrationStepper dampedStepper(bool sleeping) {
+DampedIntegrationStepper dampedStepper(bool sleeping, int threads = 1) {
   DampedIntegrationParams params;
   params.sleep.enabled = sleeping;
+  params.impulse.threads = threads;
   return DampedIntegrationStepper(params);
 }
 
@@ -268,6 +270,19 @@ void registerAll() {
       {"clump10000_e0_landing", "", 1.5, 10, 1, false, "", 0.0, 10000},
   };
   for (const Case& c : large) registerCase("BM_DampedStep", c, dampedStepper(true), true);
+  // The dense cases on two threads (ImpulseParams::threads): the stages that gain, beside the
+  // one-thread cases above; the same steps, bit for bit.
+  std::vector<Case> twoThreads = large;
+  for (const Case& c : damped)
+    if (c.name == "pile343_settling" || c.name == "clump1000_e0_pile") {
+      twoThreads.push_back(c);
+      twoThreads.back().name += "_sleeping";
+      twoThreads.back().aim.clear();
+    }
+  for (Case c : twoThreads) {
+    c.name += "_2threads";
+    registerCase("BM_DampedStep", c, dampedStepper(true, 2), true);
+  }
 
   // The plain impulse step has no damping (\thesis{§5.3}), so its stacks need not come to
   // rest; these time the scenes in whatever state the step has brought them to.

@@ -458,22 +458,31 @@ TEST_CASE("Measuring the work the threads share changes no bit, and counts it as
     const ParallelWork& off = profiles[0].parallelWork;
     CHECK(off.testRounds[0] == 0);
     CHECK(off.levelRounds[0] == 0);
+    CHECK(off.keptRounds[0] == 0);
     const ParallelWork& work = profiles[1].parallelWork;
     // On one thread a loop of n items is n rounds; on N threads ceil(n / N) of each loop, so
     // at least the items over N, and never more than on fewer threads.
     REQUIRE(work.testRounds[0] > 0);
     REQUIRE(work.levelRounds[0] > 0);
+    REQUIRE(work.keptRounds[0] > 0);
     for (std::size_t i = 1; i < ParallelWork::threadCounts.size(); ++i) {
       const long n = ParallelWork::threadCounts[i];
       CHECK(work.testRounds[i] * n >= work.testRounds[0]);
       CHECK(work.levelRounds[i] * n >= work.levelRounds[0]);
+      CHECK(work.keptRounds[i] * n >= work.keptRounds[0]);
       CHECK(work.testRounds[i] <= work.testRounds[i - 1]);
       CHECK(work.levelRounds[i] <= work.levelRounds[i - 1]);
+      CHECK(work.keptRounds[i] <= work.keptRounds[i - 1]);
     }
     // The narrow phases counted are the passes' own.
     CHECK(work.testRounds[0] == passTests);
     CHECK(work.testSeconds > 0.0);
     CHECK(work.levelSeconds > 0.0);
+    CHECK(work.keptSeconds > 0.0);
+    // The kept narrow phases of the step's start and FIXCONTACTCONSTRAINTS are counted: two
+    // rounds a batch, each of at most its requests: tests run, handed back or settled by one axis.
+    CHECK(work.keptRounds[0] <= 2 * (profiles[1].narrowPhases + profiles[1].keptNarrowPhases +
+                                     profiles[1].axisChecks));
     // COLLIDE's levels hold fewer contacts than the passes' loops: a level is a loop.
     CHECK(work.levelRounds.back() < work.levelRounds[0]);
   }

@@ -273,6 +273,8 @@ std::string coresModel(const std::vector<SceneResults>& scenes) {
       const SharedWork& w = *r->sharedWork;
       const double tests = w.work.testSeconds / w.stepSeconds;
       const double levels = w.work.levelSeconds / w.stepSeconds;
+      const double kept = w.work.keptSeconds / w.stepSeconds;
+      const double shared = tests + levels + kept;
       // Time on N threads over time on one: the serial rest, and each shared kind in the rounds
       // N threads take.
       const auto speedup = [&](std::size_t i) {
@@ -281,17 +283,18 @@ std::string coresModel(const std::vector<SceneResults>& scenes) {
                                      static_cast<double>(rounds[0])
                                : share;
         };
-        return 1.0 / ((1.0 - tests - levels) + part(tests, w.work.testRounds) +
-                      part(levels, w.work.levelRounds));
+        return 1.0 / ((1.0 - shared) + part(tests, w.work.testRounds) +
+                      part(levels, w.work.levelRounds) + part(kept, w.work.keptRounds));
       };
       out << "- " << engine << ", " << s->spec.label() << ": shared "
-          << fixed(100.0 * (tests + levels), 0) << " % (the fast pairs' narrow phases "
+          << fixed(100.0 * shared, 0) << " % (the fast pairs' narrow phases "
           << fixed(100.0 * tests, 0) << " %, COLLIDE's levels " << fixed(100.0 * levels, 0)
-          << " %); the model";
+          << " %, the kept narrow phases of the step's start and FIXCONTACTCONSTRAINTS "
+          << fixed(100.0 * kept, 0) << " %); the model";
       for (std::size_t i = 1; i < ParallelWork::threadCounts.size(); ++i)
         out << (i > 1 ? "," : "") << " " << ParallelWork::threadCounts[i] << " threads "
             << fixed(speedup(i), 2) << "×";
-      out << " (Amdahl's bound " << fixed(1.0 / (1.0 - tests - levels), 2) << "×)";
+      out << " (Amdahl's bound " << fixed(1.0 / (1.0 - shared), 2) << "×)";
       const RunResult* two = find(*s, std::string(engine) + " 2 threads");
       if (two && two->meanMs() > 0.0)
         out << "; measured here on 2 threads " << fixed(r->meanMs() / two->meanMs(), 2)
@@ -302,9 +305,11 @@ std::string coresModel(const std::vector<SceneResults>& scenes) {
   return "**What more cores would buy boxsim damped** (a model): the part of a step its threads "
          "share (ImpulseParams::threads; the impulse chapter, \"Threads\"), timed in an untimed "
          "run of its own on one thread, as a share of the step: the narrow phases of the pairs "
-         "with a fast body in each pass, and COLLIDE's loop in dependency levels. Everything else "
-         "(the rest of the gathering, the step's start, FIXCONTACTCONSTRAINTS, damping, sleeping) "
-         "runs on one thread. On N threads each shared loop of n items takes ceil(n / N) rounds, "
+         "with a fast body in each pass, COLLIDE's loop in dependency levels, and the tests and "
+         "clips of the kept narrow phases of the step's start and of FIXCONTACTCONSTRAINTS "
+         "(KeptNarrowPhase::collideAll, two loops a batch). Everything else (the rest of the "
+         "gathering and of the step's start, the passes' slow-pair prediction, FIXCONTACTCONSTRAINTS' "
+         "nudges, damping, sleeping) runs on one thread. On N threads each shared loop of n items takes ceil(n / N) rounds, "
          "a level of COLLIDE being one loop; the model charges each kind its one-thread time "
          "times its rounds on N over its rounds on one, as if every item cost the same and the "
          "threads met for free, so it is an upper bound. The two-thread rows of the table are "

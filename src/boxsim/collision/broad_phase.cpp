@@ -68,11 +68,9 @@ void candidatePairs(const World& world, const std::vector<Vec3>& lo, const std::
 }
 
 namespace {
-/// collideBoxes for bodies i and j where they stand, through `kept` when there is one.
-ContactManifold narrowPhase(const World& world, int i, int j, double margin,
-                            KeptNarrowPhase* kept) {
-  const Obb a = Obb::of(world.bodies[i]), b = Obb::of(world.bodies[j]);
-  return kept ? kept->collide(i, a, j, b, margin) : collideBoxes(a, b, margin);
+/// collideBoxes for bodies i and j where they stand.
+ContactManifold narrowPhase(const World& world, int i, int j, double margin) {
+  return collideBoxes(Obb::of(world.bodies[i]), Obb::of(world.bodies[j]), margin);
 }
 }  // namespace
 
@@ -95,8 +93,20 @@ void findContacts(const World& world, double margin, const std::vector<std::pair
   // manifold several times.
   contacts.clear();
   contacts.reserve(pairs.size());
+  if (kept) {
+    // Through the store's batch: its tests may run on several threads (KeptNarrowPhase::setLoop).
+    std::vector<KeptNarrowPhase::Request>& batch = kept->newBatch();
+    for (const auto& [i, j] : pairs) batch.push_back({i, j, margin});
+    kept->collideAll(world, [&](std::size_t k, const ContactManifold& found) {
+      if (found.count == 0) return;
+      ContactManifold& m = contacts.emplace_back(found);
+      m.a = batch[k].i;
+      m.b = batch[k].j;
+    });
+    return;
+  }
   for (const auto& [i, j] : pairs) {
-    ContactManifold m = narrowPhase(world, i, j, margin, kept);
+    ContactManifold m = narrowPhase(world, i, j, margin);
     if (m.count == 0) continue;
     m.a = i;
     m.b = j;
@@ -186,14 +196,29 @@ void refindContacts(const World& world, double margin, const std::vector<Contact
     else
       candidatePairs(world, lists.lo, lists.hi, margin, lists.sweep, lists.pairs);
   }
-  for (const auto& [i, j] : pairs ? *pairs : lists.pairs) {
-    if (!moved[i] && !moved[j]) continue;
-    keepBefore({i, j});
-    ContactManifold m = narrowPhase(world, i, j, margin, kept);
-    if (m.count == 0) continue;
-    m.a = i;
-    m.b = j;
-    contacts.push_back(m);
+  if (kept) {
+    // Through the store's batch, as findContacts.
+    std::vector<KeptNarrowPhase::Request>& batch = kept->newBatch();
+    for (const auto& [i, j] : pairs ? *pairs : lists.pairs)
+      if (moved[i] || moved[j]) batch.push_back({i, j, margin});
+    kept->collideAll(world, [&](std::size_t r, const ContactManifold& found) {
+      const int i = batch[r].i, j = batch[r].j;
+      keepBefore({i, j});
+      if (found.count == 0) return;
+      ContactManifold& m = contacts.emplace_back(found);
+      m.a = i;
+      m.b = j;
+    });
+  } else {
+    for (const auto& [i, j] : pairs ? *pairs : lists.pairs) {
+      if (!moved[i] && !moved[j]) continue;
+      keepBefore({i, j});
+      ContactManifold m = narrowPhase(world, i, j, margin);
+      if (m.count == 0) continue;
+      m.a = i;
+      m.b = j;
+      contacts.push_back(m);
+    }
   }
   keepBefore({static_cast<int>(world.bodies.size()), 0});
 }

@@ -19,12 +19,15 @@
 /// poses and changes nothing.
 #pragma once
 
+#include <functional>
+#include <utility>
 #include <vector>
 
 #include "boxsim/collision/contact.hpp"
 #include "boxsim/collision/contact_manifold.hpp"
 #include "boxsim/collision/obb.hpp"
 #include "boxsim/collision/separating_axis.hpp"
+#include "boxsim/core/world.hpp"
 
 namespace boxsim {
 
@@ -53,6 +56,39 @@ class KeptNarrowPhase {
   /// the test is not run. Fields a and b of the manifold are left at -1, as collideBoxes
   /// leaves them.
   ContactManifold collide(int i, const Obb& a, int j, const Obb& b, double margin);
+
+  /// One narrow phase of a batch (collideAll): bodies i and j (i != j) where they stand, within
+  /// `margin` (m, >= 0).
+  struct Request {
+    int i;
+    int j;
+    double margin;
+  };
+  /// Runs item(k) once for every k in [0, count), in any order and on any threads, and returns
+  /// when every call has: how a batch spreads its independent work (the techniques' threads,
+  /// parallelFor). Empty: in order on the calling thread.
+  using ItemLoop = std::function<void(int count, const std::function<void(int)>& item)>;
+  /// The loop collideAll runs its rounds of tests through (empty, the default: in order).
+  void setLoop(ItemLoop loop) { loop_ = std::move(loop); }
+  /// The requests of the next collideAll, emptied: fill it, then call collideAll. Kept in the
+  /// store, so that a batch allocates nothing once the lists have grown to the scene.
+  std::vector<Request>& newBatch() {
+    batch_.clear();
+    return batch_;
+  }
+  /// collide(r.i, box of r.i, r.j, box of r.j, r.margin) for every request r of the batch
+  /// (newBatch), the boxes those of `world`'s bodies where they stand: visit(k, manifold) for
+  /// each request k in order, on the calling thread. The same manifolds, and the same store and
+  /// counts after it, as those calls one after another, provided no two requests name the same
+  /// pair (i, j): a pair's answer depends on its own kept test alone, and the store's versions
+  /// and entries are made in request order. The one-axis checks, the separating-axis tests and
+  /// the clips, each pair's own, run in two rounds through the loop (setLoop); the bookkeeping
+  /// runs on the calling thread. `visit` must not use the store.
+  template <class Visit>
+  void collideAll(const World& world, Visit&& visit) {
+    runBatch(world);
+    for (std::size_t k = 0; k < batch_.size(); ++k) visit(k, answer(k));
+  }
   /// Ends a step: pairs not asked for in the step that ends are forgotten, so the store holds
   /// the pairs that are near now, not every pair that ever was.
   void endStep();
@@ -88,6 +124,34 @@ class KeptNarrowPhase {
   /// Body `body`'s version for `box`: the one it had if the box is bitwise the last seen, else
   /// a new one.
   long versionOf(int body, const Obb& box);
+  /// Where body i's list holds pair (i, j), or -1.
+  int find(int i, int j) const;
+  /// Box of body i of the batch's world.
+  Obb boxOf(int i) const { return Obb::of(world_->bodies[static_cast<std::size_t>(i)]); }
+  /// collideAll's rounds, up to the answers: afterwards answer(k) is request k's.
+  void runBatch(const World& world);
+  /// Request k's manifold, once runBatch has run: to be asked once per request, in order.
+  ContactManifold answer(std::size_t k);
+  /// item(k) for k in [0, count) through the loop (setLoop).
+  void run(std::size_t count, void (KeptNarrowPhase::*item)(std::size_t));
+  /// Round one for request k: apart along its last test's axis?
+  void checkAxis(std::size_t k);
+  /// Round two for the w-th request of work_: its test and clip, into its entry.
+  void testAndClip(std::size_t w);
+
+  /// What collideAll knows of a request between its rounds.
+  struct Pending {
+    enum : char { Apart, Kept, Test } state = Test;  ///< settled by one axis, handed back, run
+    bool clipped = false;  ///< its clip was made in this batch
+    int entry = -1;        ///< its entry's place in body i's list (-1 in the first round: none)
+    double depth = 0.0;    ///< m, Apart: the depth along the last test's axis
+  };
+  std::vector<Pending> pending_;  ///< collideAll's, per request (kept: no allocation per batch)
+  std::vector<int> work_;         ///< collideAll's requests with a test or a clip to make
+  std::vector<Request> batch_;    ///< the next collideAll's requests (newBatch)
+  ItemLoop loop_;                 ///< collideAll's rounds (setLoop)
+  const World* world_ = nullptr;  ///< the world of the batch being run
+  void (KeptNarrowPhase::*item_)(std::size_t) = nullptr;  ///< the round run() runs
 
   /// Per body i, the tests of the pairs (i, j) kept, in the order they were first asked for.
   /// A step asks for a body's pairs together (pairs come sorted by body), so a lookup reads one

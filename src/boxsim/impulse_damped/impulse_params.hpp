@@ -122,12 +122,13 @@ struct ImpulseParams {
   /// test back while both boxes stand exactly where they stood when it ran. Not written into
   /// output headers, as it changes no result.
   bool keepNarrowPhases = true;
-  /// Threads of a pass, >= 1: COLLIDE's loop (impulse_pass.hpp, "Threads"), whose contacts
-  /// run in dependency levels of A.2's own order, and the narrow phases of the pairs with a
-  /// fast body (once_per_step_gathering.hpp), each pair's into its own slot. The same bits for
-  /// any number (tested). 1, the default: no second thread. More are used only where OpenMP was
-  /// found at build time (not in the WebAssembly build), and in a pass with `parallelContacts`
-  /// contacts a level or `parallelNarrowPhases` narrow phases.
+  /// Threads of a step, >= 1: COLLIDE's loop (impulse_pass.hpp, "Threads"), whose contacts
+  /// run in dependency levels of A.2's own order, the narrow phases of the pairs with a fast
+  /// body (once_per_step_gathering.hpp), each pair's into its own slot, and the kept narrow
+  /// phases of the step's start and of FIXCONTACTCONSTRAINTS (KeptNarrowPhase::collideAll). The
+  /// same bits for any number (tested). 1, the default: no second thread. More are used only
+  /// where OpenMP was found at build time (not in the WebAssembly build), and in a loop of
+  /// `parallelContacts` contacts a level or `parallelNarrowPhases` narrow phases.
   int threads = 1;
   /// Contacts a dependency level of a pass needs on average before COLLIDE's loop is shared
   /// among `threads`, a frictional contact counting as 4 (its five friction rows): below it the
@@ -136,11 +137,16 @@ struct ImpulseParams {
   /// 8 % slower on 2 threads, with μ = 0.5 (16 frictional ones) 3-6 % faster. Speed only, the
   /// same bits for any value (0: every pass of two contacts or more); not written into headers.
   int parallelContacts = 48;
-  /// Narrow phases of pairs with a fast body a pass needs before they are shared among
-  /// `threads`: each is 0.1-2 µs (a one-axis check or the full test and clip), the threads'
-  /// meeting a few µs. Speed only, the same bits for any value (0: every pass with one); not
-  /// written into headers.
-  int parallelNarrowPhases = 32;
+  /// Narrow phases a loop needs before they are shared among `threads`: those of the pairs with
+  /// a fast body in a pass, and each round of a batch of kept narrow phases (the step's start,
+  /// FIXCONTACTCONSTRAINTS; KeptNarrowPhase::collideAll). Each is 0.1-2 µs (a one-axis check or
+  /// the full test and clip), but its data (poses, the pair's kept answer, its manifold) was
+  /// just written by the calling thread and must move to the other core's cache and back: 1024,
+  /// measured on this project's 2-core machine, where the 1000-cube clump piling at e = 0
+  /// (about 290 such narrow phases a pass) ran its passes 5-10 % slower with them shared, and
+  /// the 10 000-cube clump landing (thousands a pass) 3-7 % faster. Speed only, the same bits
+  /// for any value (0: every loop of one or more); not written into headers.
+  int parallelNarrowPhases = 1024;
 };
 
 /// Constants of DAMPENOBJECTS (\alg{A.2}), in the scaled units of this file's introduction.

@@ -16,7 +16,14 @@ OncePerStepGathering::OncePerStepGathering(const ImpulseParams& params)
     : params_(params),
       candidates_(params.slowWidening),
       slowPairs_(params.pairReach),
-      kept_(params.keepNarrowPhases) {}
+      kept_(params.keepNarrowPhases) {
+  kept_.setLoop(keptNarrowPhaseLoop(params_.threads, params_.parallelNarrowPhases, nullptr));
+}
+
+void OncePerStepGathering::setParallelWork(ParallelWork* work) {
+  work_ = work;
+  kept_.setLoop(keptNarrowPhaseLoop(params_.threads, params_.parallelNarrowPhases, work));
+}
 
 bool OncePerStepGathering::cacheCovers(const World& world, double margin) const {
   return margin == cacheMargin_ && cached_ && bodies_.sameMobility(world);
@@ -41,9 +48,26 @@ void OncePerStepGathering::buildCache(const World& world, const Vec3& gravitySte
   // slow body can move (slowWidening >= exactReach): the pairs the broad phase gives with
   // margin and widening, picked from the candidates (whose growth is at least the widening) by
   // the sweep's own test.
-  for (StepCandidates::Candidate& candidate : candidates_.candidates())
-    candidate.cached = slowPairs_.add(world, bodies_, candidate.a, candidate.b, margin,
-                                      params_.slowWidening, normals, kept_);
+  // The narrow phases in one batch (on several threads when ImpulseParams::threads > 1), the
+  // pairs cached in candidate order.
+  std::vector<StepCandidates::Candidate>& candidates = candidates_.candidates();
+  std::vector<KeptNarrowPhase::Request>& batch = kept_.newBatch();
+  batchCandidates_.clear();
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    StepCandidates::Candidate& candidate = candidates[k];
+    candidate.cached = -1;
+    double pairMargin = 0.0;
+    if (!slowPairs_.wanted(world, bodies_, candidate.a, candidate.b, margin, params_.slowWidening,
+                           pairMargin))
+      continue;
+    batch.push_back({candidate.a, candidate.b, pairMargin});
+    batchCandidates_.push_back(static_cast<int>(k));
+  }
+  kept_.collideAll(world, [&](std::size_t r, const ContactManifold& m) {
+    const KeptNarrowPhase::Request& request = batch[r];
+    candidates[static_cast<std::size_t>(batchCandidates_[r])].cached =
+        slowPairs_.add(world, bodies_, request.i, request.j, request.margin, m, normals);
+  });
   ++narrowPhases_;
   // Every predicted pose and every candidate's answer is from before this build.
   buildStamp_ = stamps_.next();
@@ -200,8 +224,13 @@ void OncePerStepGathering::gatherFastPairs(World& world, const Vec3& gravityStep
     // candidates of a settling heap have none and cost no call.
     // On one thread each pair is finished as soon as it is planned; on several, every pair is
     // planned first, so that the narrow phases can run together (testFastPairs). The same
-    // operations in the same order for each pair, so the same bits.
-    const bool inOrder = params_.threads < 2 && !work_;
+    // operations in the same order for each pair, so the same bits. Planning first costs more
+    // than it saves when too few narrow phases follow to be shared: on several threads a pass
+    // plans first only when the last pass had enough (the count changes slowly from pass to
+    // pass), or when the work is measured.
+    const bool inOrder =
+        !work_ && (params_.threads < 2 || lastPassTests_ < params_.parallelNarrowPhases);
+    int tests = 0;
     FastPairTask task;
     for (std::size_t k = 0; k < candidates.size(); ++k) {
       if (!poses_.fastAtPredicted(candidates[k].a) && !poses_.fastAtPredicted(candidates[k].b))
@@ -215,9 +244,13 @@ void OncePerStepGathering::gatherFastPairs(World& world, const Vec3& gravityStep
         fastTasks_.push_back(task);
         continue;
       }
-      if (task.test >= 0) task.touching = candidateManifold(world, task, margin, tested);
+      if (task.test >= 0) {
+        task.touching = candidateManifold(world, task, margin, tested);
+        ++tests;
+      }
       finishFastPair(world, task, tested, normals);
     }
+    lastPassTests_ = inOrder ? tests : static_cast<int>(fastTests_.size());
   }
   if (!fastTasks_.empty()) {
     testFastPairs(world, margin);

@@ -125,7 +125,7 @@ class OncePerStepGathering {
   void setSleepers(const std::vector<char>* asleep) { sleepers_ = asleep; }
   /// Where the shared narrow phases' work is measured (ParallelWork), or null: none. While
   /// measured, every pass plans its pairs before their narrow phases, on one thread too.
-  void setParallelWork(ParallelWork* work) { work_ = work; }
+  void setParallelWork(ParallelWork* work);
 
   /// Builds of the cache since construction (one narrow phase of the slow pairs each).
   long narrowPhases() const { return narrowPhases_; }
@@ -181,7 +181,9 @@ class OncePerStepGathering {
   /// (a, b) order. The bodies that touch are moved there (putBackAll() returns them). Each pair
   /// is planned (planFastPair), tested (candidateManifold) and finished (finishFastPair); on
   /// one thread pair by pair, on several in three rounds, every pair planned in order, then
-  /// their narrow phases together (testFastPairs), then every pair finished in order.
+  /// their narrow phases together (testFastPairs), then every pair finished in order; on
+  /// several threads too pair by pair when the last pass had fewer narrow phases than
+  /// ImpulseParams::parallelNarrowPhases (and the work is not measured).
   void gatherFastPairs(World& world, const Vec3& gravityStep, double dt, double margin,
                        ContactNormalTracker& normals);
   /// The fast pair of candidate k at the pass' poses, up to its narrow phase: stands its slow
@@ -234,8 +236,10 @@ class OncePerStepGathering {
   std::vector<FastPairTask> fastTasks_;       ///< this pass: planFastPair's list, in order
   std::vector<int> fastTests_;                ///< this pass: the tasks with a narrow phase
   std::vector<ContactManifold> fastTested_;   ///< per narrow phase of fastTests_: its manifold
+  int lastPassTests_ = 0;  ///< narrow phases of pairs with a fast body in the last pass that had any
   ContactIslands islands_;            ///< the islands of the candidates (islands())
   KeptNarrowPhase kept_;              ///< the narrow phases of the step (kept())
+  std::vector<int> batchCandidates_;  ///< buildCache: the candidate of each narrow phase of its batch
   std::uint64_t islandSweep_ = 0;     ///< the sweep islands_ was built after
   std::size_t joinedCandidates_ = 0;  ///< candidates joined into islands_ so far
   std::vector<char> skip_;            ///< per body, this pass: its island is settled

@@ -16,13 +16,15 @@ namespace boxsim {
 /// OpenMP (the WebAssembly build) the calls run in order on the calling thread.
 void parallelFor(int count, int threads, const std::function<void(int)>& item);
 
-/// The work of a step's passes that threads share, for a model of what more cores would buy
-/// (Amdahl's law with the loops' own granularity). Measured on any number of threads, one
-/// included: the loops that would be shared are timed as they run. Two kinds, each of loops of
-/// independent items: the narrow phases of the pairs with a fast body in a pass (one loop of
-/// `tests` items, when ImpulseParams::parallelNarrowPhases are reached) and COLLIDE's
-/// dependency levels (one loop per level, when ImpulseParams::parallelContacts are reached; a
-/// pass with a sleeper beside an awake body runs in order and is not counted). N threads take
+/// The work of a step that threads share, for a model of what more cores would buy (Amdahl's
+/// law with the loops' own granularity). Measured on any number of threads, one included: the
+/// loops that would be shared are timed as they run. Three kinds, each of loops of independent
+/// items: the narrow phases of the pairs with a fast body in a pass (one loop of `tests` items,
+/// when ImpulseParams::parallelNarrowPhases are reached), COLLIDE's dependency levels (one loop
+/// per level, when ImpulseParams::parallelContacts are reached; a pass with a sleeper beside an
+/// awake body runs in order and is not counted), and the step's kept narrow phases, those of
+/// its start and of FIXCONTACTCONSTRAINTS (KeptNarrowPhase::collideAll's rounds, when
+/// ImpulseParams::parallelNarrowPhases are reached). N threads take
 /// a loop of n items in ceil(n / N) rounds, so a kind's time on N threads, if every item cost
 /// the same and the threads met for free, is its time on one times rounds[N] / rounds[1].
 struct ParallelWork {
@@ -33,8 +35,10 @@ struct ParallelWork {
   using Rounds = std::array<long, threadCounts.size()>;
   double testSeconds = 0.0;   ///< s, in the shared loops of narrow phases
   double levelSeconds = 0.0;  ///< s, in COLLIDE's loops of the shared passes
+  double keptSeconds = 0.0;   ///< s, in the rounds of the step's kept narrow phases
   Rounds testRounds{};        ///< rounds of the narrow phases
   Rounds levelRounds{};       ///< rounds of COLLIDE's levels
+  Rounds keptRounds{};        ///< rounds of the step's kept narrow phases
   /// Counts a loop of n items into `rounds`.
   static void countLoop(Rounds& rounds, long n) {
     for (std::size_t i = 0; i < threadCounts.size(); ++i)
@@ -49,5 +53,13 @@ struct ParallelWork {
     seconds += std::chrono::duration<double>(Clock::now() - start).count();
   }
 };
+
+/// The loop of a batch of kept narrow phases (KeptNarrowPhase::setLoop): parallelFor on
+/// `threads` threads when a round has at least `minItems` items (ImpulseParams::
+/// parallelNarrowPhases), else in order on the calling thread; such a round's time and rounds
+/// are added to work->keptSeconds and keptRounds when `work` is given (it must outlive the loop).
+std::function<void(int, const std::function<void(int)>&)> keptNarrowPhaseLoop(int threads,
+                                                                             int minItems,
+                                                                             ParallelWork* work);
 
 }  // namespace boxsim

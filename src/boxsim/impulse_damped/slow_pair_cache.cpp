@@ -19,12 +19,11 @@ void SlowPairCache::clear() {
   exactManifolds_.clear();
 }
 
-int SlowPairCache::add(const World& world, const StepBodies& bodies, int i, int j, double margin,
-                       double slowWidening, ContactNormalTracker& normals,
-                       KeptNarrowPhase& kept) {
+bool SlowPairCache::wanted(const World& world, const StepBodies& bodies, int i, int j,
+                           double margin, double slowWidening, double& pairMargin) const {
   // Gathered as written, pass by pass, unless the two move together.
   const bool together = pairReach_ && bodies.movingTogether(i, j);
-  if ((bodies.fast[i] || bodies.fast[j]) && !together) return -1;
+  if ((bodies.fast[i] || bodies.fast[j]) && !together) return false;
   const RigidBody& bodyI = world.bodies[i];
   const RigidBody& bodyJ = world.bodies[j];
   const double wideningI = bodyI.immovable ? 0.0 : slowWidening * bodyI.halfExtents.minCoeff();
@@ -33,9 +32,15 @@ int SlowPairCache::add(const World& world, const StepBodies& bodies, int i, int 
   Vec3 loI, hiI, loJ, hiJ;
   boundsAbout(bodyI.s.x, bodies.reach[i], wideningI, loI, hiI);
   boundsAbout(bodyJ.s.x, bodies.reach[j], wideningJ, loJ, hiJ);
-  if (!boundsWithin(loI, hiI, loJ, hiJ, margin)) return -1;
-  const double pairMargin = margin + wideningI + wideningJ;
-  ContactManifold m = kept.collide(i, Obb::of(bodyI), j, Obb::of(bodyJ), pairMargin);
+  if (!boundsWithin(loI, hiI, loJ, hiJ, margin)) return false;
+  pairMargin = margin + wideningI + wideningJ;
+  return true;
+}
+
+int SlowPairCache::add(const World& world, const StepBodies& bodies, int i, int j,
+                       double pairMargin, ContactManifold m, ContactNormalTracker& normals) {
+  const RigidBody& bodyI = world.bodies[i];
+  const RigidBody& bodyJ = world.bodies[j];
   // Closer than the margin along every axis, yet no point: boxes passing corner by corner.
   // The pair stays, with no points, and gets the exact narrow phase every pass.
   if (m.depth <= -pairMargin) return -1;

@@ -43,16 +43,20 @@ class SlowPairCache {
 
   /// Forgets every cached pair.
   void clear();
-  /// Caches bodies i < j of `world` if they are both slow, or move together
-  /// (StepBodies::movingTogether, with pairReach on), and their narrow phase at the current
-  /// poses, each movable body widened by `slowWidening` times its smallest half extent (more
-  /// than a slow body can move in a pass), finds them closer than `margin` (m) plus both
-  /// widenings; a pair with a fast body needs manifold points besides. Keeps the normal model's
-  /// contact now and the manifold's points. Returns the pair's index in the cache, or -1 when
-  /// it is not cached. Pairs must come in increasing (i, j) order. The narrow phase runs
-  /// through `kept`.
-  int add(const World& world, const StepBodies& bodies, int i, int j, double margin,
-          double slowWidening, ContactNormalTracker& normals, KeptNarrowPhase& kept);
+  /// Whether bodies i < j of `world` may be cached: both slow, or moving together
+  /// (StepBodies::movingTogether, with pairReach on), and their bounds, each movable body's
+  /// widened by `slowWidening` times its smallest half extent (more than a slow body can move in
+  /// a pass), within `margin` (m). If so, `pairMargin` gets the margin of their narrow phase at
+  /// the current poses, m: `margin` plus both widenings (add takes it).
+  bool wanted(const World& world, const StepBodies& bodies, int i, int j, double margin,
+              double slowWidening, double& pairMargin) const;
+  /// Caches bodies i < j that wanted() accepted, given `m`, their narrow phase where they stand
+  /// within `pairMargin` (m): if it finds them closer than that margin (a pair with a fast body
+  /// needs manifold points besides), keeps the normal model's contact now and the manifold's
+  /// points. Returns the pair's index in the cache, or -1 when it is not cached. Pairs must
+  /// come in increasing (i, j) order.
+  int add(const World& world, const StepBodies& bodies, int i, int j, double pairMargin,
+          ContactManifold m, ContactNormalTracker& normals);
 
   /// The cached pairs' bodies and reach, in cache order.
   const std::vector<PairReach>& reaches() const { return reaches_; }
