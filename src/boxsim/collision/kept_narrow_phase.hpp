@@ -60,9 +60,9 @@ class KeptNarrowPhase {
   /// One narrow phase of a batch (collideAll): bodies i and j (i != j) where they stand, within
   /// `margin` (m, >= 0).
   struct Request {
-    int i;
-    int j;
-    double margin;
+    int i;          ///< body of the first box (the pair is kept in its list)
+    int j;          ///< body of the second box
+    double margin;  ///< m, >= 0
   };
   /// Runs item(k) once for every k in [0, count), in any order and on any threads, and returns
   /// when every call has: how a batch spreads its independent work (the techniques' threads,
