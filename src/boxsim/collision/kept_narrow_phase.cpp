@@ -104,16 +104,13 @@ int KeptNarrowPhase::find(int i, int j) const {
 }
 
 void KeptNarrowPhase::run(std::size_t count, void (KeptNarrowPhase::*item)(std::size_t)) {
-  // The call captures the store alone: a std::function holds it without allocating.
+  // The call captures the store alone: a std::function holds it without allocating. A batch
+  // comes here only with a loop (collideAll).
   item_ = item;
   const std::function<void(int)> call = [this](int k) {
     (this->*item_)(static_cast<std::size_t>(k));
   };
-  if (loop_) {
-    loop_(static_cast<int>(count), call);
-  } else {
-    for (std::size_t k = 0; k < count; ++k) (this->*item)(k);
-  }
+  loop_(static_cast<int>(count), call);
 }
 
 void KeptNarrowPhase::checkAxis(std::size_t k) {

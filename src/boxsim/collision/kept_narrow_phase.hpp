@@ -68,8 +68,14 @@ class KeptNarrowPhase {
   /// when every call has: how a batch spreads its independent work (the techniques' threads,
   /// parallelFor). Empty: in order on the calling thread.
   using ItemLoop = std::function<void(int count, const std::function<void(int)>& item)>;
-  /// The loop collideAll runs its rounds of tests through (empty, the default: in order).
-  void setLoop(ItemLoop loop) { loop_ = std::move(loop); }
+  /// The loop collideAll runs its rounds of tests through, for batches of `minRequests`
+  /// requests or more; a smaller batch, and every batch without a loop (empty, the default), is
+  /// answered by collide() request after request, which keeps each pair's data in the cache
+  /// from its check to its answer.
+  void setLoop(ItemLoop loop, std::size_t minRequests = 0) {
+    loop_ = std::move(loop);
+    loopMin_ = minRequests;
+  }
   /// The requests of the next collideAll, emptied: fill it, then call collideAll. Kept in the
   /// store, so that a batch allocates nothing once the lists have grown to the scene.
   std::vector<Request>& newBatch() {
@@ -86,6 +92,14 @@ class KeptNarrowPhase {
   /// runs on the calling thread. `visit` must not use the store.
   template <class Visit>
   void collideAll(const World& world, Visit&& visit) {
+    if (!loop_ || batch_.size() < loopMin_) {
+      for (std::size_t k = 0; k < batch_.size(); ++k) {
+        const Request& r = batch_[k];
+        visit(k, collide(r.i, Obb::of(world.bodies[static_cast<std::size_t>(r.i)]), r.j,
+                         Obb::of(world.bodies[static_cast<std::size_t>(r.j)]), r.margin));
+      }
+      return;
+    }
     runBatch(world);
     for (std::size_t k = 0; k < batch_.size(); ++k) visit(k, answer(k));
   }
@@ -150,6 +164,7 @@ class KeptNarrowPhase {
   std::vector<int> work_;         ///< collideAll's requests with a test or a clip to make
   std::vector<Request> batch_;    ///< the next collideAll's requests (newBatch)
   ItemLoop loop_;                 ///< collideAll's rounds (setLoop)
+  std::size_t loopMin_ = 0;       ///< the fewest requests a batch runs through loop_ with
   const World* world_ = nullptr;  ///< the world of the batch being run
   void (KeptNarrowPhase::*item_)(std::size_t) = nullptr;  ///< the round run() runs
 

@@ -17,12 +17,18 @@ OncePerStepGathering::OncePerStepGathering(const ImpulseParams& params)
       candidates_(params.slowWidening),
       slowPairs_(params.pairReach),
       kept_(params.keepNarrowPhases) {
-  kept_.setLoop(keptNarrowPhaseLoop(params_.threads, params_.parallelNarrowPhases, nullptr));
+  setParallelWork(nullptr);
 }
 
 void OncePerStepGathering::setParallelWork(ParallelWork* work) {
   work_ = work;
-  kept_.setLoop(keptNarrowPhaseLoop(params_.threads, params_.parallelNarrowPhases, work));
+  // The kept narrow phases in batches when threads may share them or their work is measured;
+  // on one thread, unmeasured, request after request (KeptNarrowPhase::setLoop).
+  if (params_.threads > 1 || work)
+    kept_.setLoop(keptNarrowPhaseLoop(params_.threads, params_.parallelNarrowPhases, work),
+                  static_cast<std::size_t>(std::max(params_.parallelNarrowPhases, 0)));
+  else
+    kept_.setLoop({});
 }
 
 bool OncePerStepGathering::cacheCovers(const World& world, double margin) const {

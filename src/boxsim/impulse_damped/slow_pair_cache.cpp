@@ -38,24 +38,27 @@ bool SlowPairCache::wanted(const World& world, const StepBodies& bodies, int i, 
 }
 
 int SlowPairCache::add(const World& world, const StepBodies& bodies, int i, int j,
-                       double pairMargin, ContactManifold m, ContactNormalTracker& normals) {
+                       double pairMargin, const ContactManifold& manifold,
+                       ContactNormalTracker& normals) {
   const RigidBody& bodyI = world.bodies[i];
   const RigidBody& bodyJ = world.bodies[j];
   // Closer than the margin along every axis, yet no point: boxes passing corner by corner.
   // The pair stays, with no points, and gets the exact narrow phase every pass.
-  if (m.depth <= -pairMargin) return -1;
+  if (manifold.depth <= -pairMargin) return -1;
   // A pair with a fast body is predicted from its points only: with none, it is gathered
   // as written.
-  if ((bodies.fast[i] || bodies.fast[j]) && m.count == 0) return -1;
+  if ((bodies.fast[i] || bodies.fast[j]) && manifold.count == 0) return -1;
+  // The manifold, kept with the pair (written there once, not copied about).
+  CachedPair& pair = pairs_.emplace_back();
+  pair.manifold = manifold;
+  ContactManifold& m = pair.manifold;
   m.a = i;
   m.b = j;
   const Vec3& xa = bodyI.s.x;
   const Vec3& xb = bodyJ.s.x;
   // The normal model's choice now; its face is remembered only in the passes the pair touches.
-  CachedPair& pair = pairs_.emplace_back();
   const ImpulseContact found = normals.contactOf(world, m, false);
   pair.patch = found.patch;
-  pair.manifold = m;
   PairReach reach{i, j, m.count};
   PredictedPair& predicted = predicted_.emplace_back();
   predicted.normal = m.normal;

@@ -56,7 +56,7 @@ class SlowPairCache {
   /// points. Returns the pair's index in the cache, or -1 when it is not cached. Pairs must
   /// come in increasing (i, j) order.
   int add(const World& world, const StepBodies& bodies, int i, int j, double pairMargin,
-          ContactManifold m, ContactNormalTracker& normals);
+          const ContactManifold& m, ContactNormalTracker& normals);
 
   /// The cached pairs' bodies and reach, in cache order.
   const std::vector<PairReach>& reaches() const { return reaches_; }
