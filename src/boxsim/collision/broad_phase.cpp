@@ -68,9 +68,34 @@ void candidatePairs(const World& world, const std::vector<Vec3>& lo, const std::
 }
 
 namespace {
-/// collideBoxes for bodies i and j where they stand.
-ContactManifold narrowPhase(const World& world, int i, int j, double margin) {
-  return collideBoxes(Obb::of(world.bodies[i]), Obb::of(world.bodies[j]), margin);
+/// visit(i, j, manifold) for each pair (i, j) of `pairs` (with moved[i] or moved[j] when
+/// `moved` is given, else every pair) in order: collideBoxes of bodies i and j where they stand
+/// within `margin`, through the store's batch when there is one (KeptNarrowPhase::collideAll,
+/// whose tests may run on several threads).
+template <class Visit>
+void narrowPhases(const World& world, double margin, const std::vector<std::pair<int, int>>& pairs,
+                  const std::vector<char>* moved, KeptNarrowPhase* kept, Visit&& visit) {
+  const auto wanted = [moved](int i, int j) { return !moved || (*moved)[i] || (*moved)[j]; };
+  if (kept) {
+    std::vector<KeptNarrowPhase::Request>& batch = kept->newBatch();
+    for (const auto& [i, j] : pairs)
+      if (wanted(i, j)) batch.push_back({i, j, margin});
+    kept->collideAll(world, [&](std::size_t k, const ContactManifold& found) {
+      visit(batch[k].i, batch[k].j, found);
+    });
+    return;
+  }
+  for (const auto& [i, j] : pairs)
+    if (wanted(i, j))
+      visit(i, j, collideBoxes(Obb::of(world.bodies[i]), Obb::of(world.bodies[j]), margin));
+}
+
+/// Appends the manifold `found` of pair (i, j) to `contacts` when it has points.
+void addContact(int i, int j, const ContactManifold& found, std::vector<ContactManifold>& contacts) {
+  if (found.count == 0) return;
+  ContactManifold& m = contacts.emplace_back(found);
+  m.a = i;
+  m.b = j;
 }
 }  // namespace
 
@@ -93,25 +118,10 @@ void findContacts(const World& world, double margin, const std::vector<std::pair
   // manifold several times.
   contacts.clear();
   contacts.reserve(pairs.size());
-  if (kept) {
-    // Through the store's batch: its tests may run on several threads (KeptNarrowPhase::setLoop).
-    std::vector<KeptNarrowPhase::Request>& batch = kept->newBatch();
-    for (const auto& [i, j] : pairs) batch.push_back({i, j, margin});
-    kept->collideAll(world, [&](std::size_t k, const ContactManifold& found) {
-      if (found.count == 0) return;
-      ContactManifold& m = contacts.emplace_back(found);
-      m.a = batch[k].i;
-      m.b = batch[k].j;
-    });
-    return;
-  }
-  for (const auto& [i, j] : pairs) {
-    ContactManifold m = narrowPhase(world, i, j, margin);
-    if (m.count == 0) continue;
-    m.a = i;
-    m.b = j;
-    contacts.push_back(m);
-  }
+  narrowPhases(world, margin, pairs, nullptr, kept,
+               [&contacts](int i, int j, const ContactManifold& found) {
+                 addContact(i, j, found, contacts);
+               });
 }
 
 bool pairIntersects(const World& world, int i, int j, double tolerance) {
@@ -196,30 +206,11 @@ void refindContacts(const World& world, double margin, const std::vector<Contact
     else
       candidatePairs(world, lists.lo, lists.hi, margin, lists.sweep, lists.pairs);
   }
-  if (kept) {
-    // Through the store's batch, as findContacts.
-    std::vector<KeptNarrowPhase::Request>& batch = kept->newBatch();
-    for (const auto& [i, j] : pairs ? *pairs : lists.pairs)
-      if (moved[i] || moved[j]) batch.push_back({i, j, margin});
-    kept->collideAll(world, [&](std::size_t r, const ContactManifold& found) {
-      const int i = batch[r].i, j = batch[r].j;
-      keepBefore({i, j});
-      if (found.count == 0) return;
-      ContactManifold& m = contacts.emplace_back(found);
-      m.a = i;
-      m.b = j;
-    });
-  } else {
-    for (const auto& [i, j] : pairs ? *pairs : lists.pairs) {
-      if (!moved[i] && !moved[j]) continue;
-      keepBefore({i, j});
-      ContactManifold m = narrowPhase(world, i, j, margin);
-      if (m.count == 0) continue;
-      m.a = i;
-      m.b = j;
-      contacts.push_back(m);
-    }
-  }
+  narrowPhases(world, margin, pairs ? *pairs : lists.pairs, &moved, kept,
+               [&](int i, int j, const ContactManifold& found) {
+                 keepBefore({i, j});
+                 addContact(i, j, found, contacts);
+               });
   keepBefore({static_cast<int>(world.bodies.size()), 0});
 }
 

@@ -32,25 +32,83 @@ long KeptNarrowPhase::versionOf(int body, const Obb& box) {
   return seen.version;
 }
 
-std::vector<KeptNarrowPhase::Entry>::iterator KeptNarrowPhase::entry(int i, const Obb& a, int j,
-                                                                     const Obb& b) {
+int KeptNarrowPhase::find(int i, int j) const {
+  if (static_cast<std::size_t>(i) >= kept_.size()) return -1;
+  const std::vector<Entry>& list = kept_[static_cast<std::size_t>(i)];
+  const auto found = std::find_if(list.begin(), list.end(), [j](const Entry& e) { return e.j == j; });
+  return found == list.end() ? -1 : static_cast<int>(found - list.begin());
+}
+
+int KeptNarrowPhase::place(int i, const Obb& a, int j, const Obb& b, bool& test) {
   const long versionA = versionOf(i, a), versionB = versionOf(j, b);
   std::vector<Entry>& list = kept_[static_cast<std::size_t>(i)];
-  auto found = std::find_if(list.begin(), list.end(), [j](const Entry& e) { return e.j == j; });
-  if (found != list.end() && found->versionA == versionA && found->versionB == versionB) {
-    found->step = step_ + 1;
+  const int found = find(i, j);
+  if (found >= 0 && list[static_cast<std::size_t>(found)].versionA == versionA &&
+      list[static_cast<std::size_t>(found)].versionB == versionB) {
+    list[static_cast<std::size_t>(found)].step = step_ + 1;
     ++reuses_;
+    test = false;
     return found;
   }
-  const Entry ran{j, step_ + 1, versionA, versionB, separatingAxisTest(a, b), false};
+  const Entry placed{j, step_ + 1, versionA, versionB, SeparatingAxisResult{}, false};
   ++tests_;
-  if (found != list.end()) {
-    *found = ran;
+  test = true;
+  if (found >= 0) {
+    list[static_cast<std::size_t>(found)] = placed;
     return found;
   }
-  list.push_back(ran);
+  list.push_back(placed);
   clipsOf_[static_cast<std::size_t>(i)].emplace_back();
-  return list.end() - 1;
+  return static_cast<int>(list.size()) - 1;
+}
+
+KeptNarrowPhase::Entry& KeptNarrowPhase::at(int i, int e) {
+  return kept_[static_cast<std::size_t>(i)][static_cast<std::size_t>(e)];
+}
+
+int KeptNarrowPhase::entry(int i, const Obb& a, int j, const Obb& b) {
+  bool test = false;
+  const int e = place(i, a, j, b, test);
+  if (test) at(i, e).result = separatingAxisTest(a, b);
+  return e;
+}
+
+bool KeptNarrowPhase::apartAlong(int i, const Obb& a, int j, const Obb& b, double margin,
+                                 int& e, double& depth) const {
+  e = find(i, j);
+  if (e < 0) return false;
+  const SeparatingAxisResult& last =
+      kept_[static_cast<std::size_t>(i)][static_cast<std::size_t>(e)].result;
+  return last.depth < 0.0 && separatedBeyond(a, b, last, margin, SeparatingAxisParams{}, &depth);
+}
+
+ContactManifold KeptNarrowPhase::apartManifold(int i, int e, double depth) {
+  Entry& entry = at(i, e);
+  entry.step = step_ + 1;
+  ++axisChecks_;
+  ContactManifold apart;
+  apart.normal = entry.result.normal;
+  apart.kind = entry.result.kind;
+  apart.depth = depth;
+  return apart;
+}
+
+bool KeptNarrowPhase::clipWithin(int i, int e, const Obb& a, const Obb& b, double margin) {
+  Entry& entry = at(i, e);
+  // Nothing within the margin: buildContactManifold clips nothing either.
+  if (entry.result.depth <= -margin || entry.clipped) return false;
+  clipsOf_[static_cast<std::size_t>(i)][static_cast<std::size_t>(e)] =
+      clipContact(a, b, entry.result);
+  entry.clipped = true;
+  return true;
+}
+
+ContactManifold KeptNarrowPhase::manifoldOf(int i, int e, const Obb& a, const Obb& b,
+                                            double margin) {
+  const Entry& entry = at(i, e);
+  if (entry.result.depth <= -margin) return buildContactManifold(a, b, entry.result, margin);
+  return manifoldWithin(clipsOf_[static_cast<std::size_t>(i)][static_cast<std::size_t>(e)],
+                        margin);
 }
 
 SeparatingAxisResult KeptNarrowPhase::axis(int i, const Obb& a, int j, const Obb& b) {
@@ -58,7 +116,7 @@ SeparatingAxisResult KeptNarrowPhase::axis(int i, const Obb& a, int j, const Obb
     ++tests_;
     return separatingAxisTest(a, b);
   }
-  return entry(i, a, j, b)->result;
+  return at(i, entry(i, a, j, b)).result;
 }
 
 ContactManifold KeptNarrowPhase::collide(int i, const Obb& a, int j, const Obb& b, double margin) {
@@ -68,39 +126,12 @@ ContactManifold KeptNarrowPhase::collide(int i, const Obb& a, int j, const Obb& 
   }
   // Apart at its last test, and still apart beyond the margin along that test's axis: the test
   // would find no point either.
-  if (static_cast<std::size_t>(i) < kept_.size()) {
-    std::vector<Entry>& list = kept_[static_cast<std::size_t>(i)];
-    const auto last = std::find_if(list.begin(), list.end(), [j](const Entry& e) { return e.j == j; });
-    double depth = 0.0;
-    if (last != list.end() && last->result.depth < 0.0 &&
-        separatedBeyond(a, b, last->result, margin, SeparatingAxisParams{}, &depth)) {
-      last->step = step_ + 1;
-      ++axisChecks_;
-      ContactManifold apart;
-      apart.normal = last->result.normal;
-      apart.kind = last->result.kind;
-      apart.depth = depth;
-      return apart;
-    }
-  }
-  const auto e = entry(i, a, j, b);
-  // Nothing within the margin: buildContactManifold clips nothing either.
-  if (e->result.depth <= -margin) return buildContactManifold(a, b, e->result, margin);
-  std::vector<Entry>& list = kept_[static_cast<std::size_t>(i)];
-  ClippedContact& clip = clipsOf_[static_cast<std::size_t>(i)][static_cast<std::size_t>(e - list.begin())];
-  if (!e->clipped) {
-    clip = clipContact(a, b, e->result);
-    e->clipped = true;
-    ++clips_;
-  }
-  return manifoldWithin(clip, margin);
-}
-
-int KeptNarrowPhase::find(int i, int j) const {
-  if (static_cast<std::size_t>(i) >= kept_.size()) return -1;
-  const std::vector<Entry>& list = kept_[static_cast<std::size_t>(i)];
-  const auto found = std::find_if(list.begin(), list.end(), [j](const Entry& e) { return e.j == j; });
-  return found == list.end() ? -1 : static_cast<int>(found - list.begin());
+  int e = -1;
+  double depth = 0.0;
+  if (apartAlong(i, a, j, b, margin, e, depth)) return apartManifold(i, e, depth);
+  e = entry(i, a, j, b);
+  clips_ += clipWithin(i, e, a, b, margin);
+  return manifoldOf(i, e, a, b, margin);
 }
 
 void KeptNarrowPhase::run(std::size_t count, void (KeptNarrowPhase::*item)(std::size_t)) {
@@ -116,12 +147,8 @@ void KeptNarrowPhase::run(std::size_t count, void (KeptNarrowPhase::*item)(std::
 void KeptNarrowPhase::checkAxis(std::size_t k) {
   const Request& r = batch_[k];
   Pending& p = pending_[k];
-  const int e = find(r.i, r.j);
-  if (e < 0) return;
-  const SeparatingAxisResult& last =
-      kept_[static_cast<std::size_t>(r.i)][static_cast<std::size_t>(e)].result;
-  if (last.depth < 0.0 && separatedBeyond(boxOf(r.i), boxOf(r.j), last, r.margin,
-                                          SeparatingAxisParams{}, &p.depth)) {
+  int e = -1;
+  if (apartAlong(r.i, boxOf(r.i), r.j, boxOf(r.j), r.margin, e, p.depth)) {
     p.state = Pending::Apart;
     p.entry = e;
   }
@@ -131,54 +158,30 @@ void KeptNarrowPhase::testAndClip(std::size_t w) {
   const std::size_t k = static_cast<std::size_t>(work_[w]);
   const Request& r = batch_[k];
   Pending& p = pending_[k];
-  const std::size_t i = static_cast<std::size_t>(r.i), e = static_cast<std::size_t>(p.entry);
-  Entry& entry = kept_[i][e];
   const Obb a = boxOf(r.i), b = boxOf(r.j);
-  if (p.state == Pending::Test) entry.result = separatingAxisTest(a, b);
-  if (entry.result.depth > -r.margin && !entry.clipped) {
-    clipsOf_[i][e] = clipContact(a, b, entry.result);
-    entry.clipped = true;
-    p.clipped = true;
-  }
+  if (p.state == Pending::Test) at(r.i, p.entry).result = separatingAxisTest(a, b);
+  p.clipped = clipWithin(r.i, p.entry, a, b, r.margin);
 }
 
 void KeptNarrowPhase::runBatch(const World& world) {
   world_ = &world;
   pending_.assign(batch_.size(), Pending{});
-  if (!keep_) return;
   // Round one, on the loop's threads, reading the store alone: the pairs apart at their last
   // test and still apart along its axis (collide's first question).
   run(batch_.size(), &KeptNarrowPhase::checkAxis);
-  // In request order on this thread, as entry() would: the versions, the tests handed back,
+  // In request order on this thread, as collide() would: the versions, the tests handed back,
   // and a place in the store for each test to run (its result is written there next).
   work_.clear();
   for (std::size_t k = 0; k < batch_.size(); ++k) {
     const Request& r = batch_[k];
     Pending& p = pending_[k];
     if (p.state == Pending::Apart) continue;
-    const long versionA = versionOf(r.i, boxOf(r.i)), versionB = versionOf(r.j, boxOf(r.j));
-    std::vector<Entry>& list = kept_[static_cast<std::size_t>(r.i)];
-    p.entry = find(r.i, r.j);
-    if (p.entry >= 0 && list[static_cast<std::size_t>(p.entry)].versionA == versionA &&
-        list[static_cast<std::size_t>(p.entry)].versionB == versionB) {
-      Entry& e = list[static_cast<std::size_t>(p.entry)];
-      e.step = step_ + 1;
-      ++reuses_;
-      p.state = Pending::Kept;
-      // Within the margin and not clipped yet: the clip is made next.
-      if (e.result.depth > -r.margin && !e.clipped) work_.push_back(static_cast<int>(k));
-      continue;
-    }
-    const Entry placed{r.j, step_ + 1, versionA, versionB, SeparatingAxisResult{}, false};
-    ++tests_;
-    if (p.entry >= 0) {
-      list[static_cast<std::size_t>(p.entry)] = placed;
-    } else {
-      p.entry = static_cast<int>(list.size());
-      list.push_back(placed);
-      clipsOf_[static_cast<std::size_t>(r.i)].emplace_back();
-    }
-    work_.push_back(static_cast<int>(k));
+    bool test = false;
+    p.entry = place(r.i, boxOf(r.i), r.j, boxOf(r.j), test);
+    p.state = test ? Pending::Test : Pending::Kept;
+    const Entry& e = at(r.i, p.entry);
+    // A test to run, or a kept one within the margin and not clipped yet: next round's.
+    if (test || (e.result.depth > -r.margin && !e.clipped)) work_.push_back(static_cast<int>(k));
   }
   // Round two, on the loop's threads: each test and clip into its own entry.
   run(work_.size(), &KeptNarrowPhase::testAndClip);
@@ -186,23 +189,10 @@ void KeptNarrowPhase::runBatch(const World& world) {
 
 ContactManifold KeptNarrowPhase::answer(std::size_t k) {
   const Request& r = batch_[k];
-  if (!keep_) return collide(r.i, boxOf(r.i), r.j, boxOf(r.j), r.margin);
   const Pending& p = pending_[k];
-  const std::size_t i = static_cast<std::size_t>(r.i), e = static_cast<std::size_t>(p.entry);
-  Entry& entry = kept_[i][e];
-  if (p.state == Pending::Apart) {
-    entry.step = step_ + 1;
-    ++axisChecks_;
-    ContactManifold apart;
-    apart.normal = entry.result.normal;
-    apart.kind = entry.result.kind;
-    apart.depth = p.depth;
-    return apart;
-  }
+  if (p.state == Pending::Apart) return apartManifold(r.i, p.entry, p.depth);
   clips_ += p.clipped;
-  if (entry.result.depth <= -r.margin)
-    return buildContactManifold(boxOf(r.i), boxOf(r.j), entry.result, r.margin);
-  return manifoldWithin(clipsOf_[i][e], r.margin);
+  return manifoldOf(r.i, p.entry, boxOf(r.i), boxOf(r.j), r.margin);
 }
 
 void KeptNarrowPhase::endStep() {

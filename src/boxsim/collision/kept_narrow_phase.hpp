@@ -92,7 +92,7 @@ class KeptNarrowPhase {
   /// runs on the calling thread. `visit` must not use the store.
   template <class Visit>
   void collideAll(const World& world, Visit&& visit) {
-    if (!loop_ || batch_.size() < loopMin_) {
+    if (!keep_ || !loop_ || batch_.size() < loopMin_) {
       for (std::size_t k = 0; k < batch_.size(); ++k) {
         const Request& r = batch_[k];
         visit(k, collide(r.i, Obb::of(world.bodies[static_cast<std::size_t>(r.i)]), r.j,
@@ -133,13 +133,31 @@ class KeptNarrowPhase {
     SeparatingAxisResult result;
     bool clipped;   ///< its clip, at the same place in clips_'s list, is the test's
   };
-  /// Body i's entry for (i, j) with the test of boxes a and b, run now unless kept.
-  std::vector<Entry>::iterator entry(int i, const Obb& a, int j, const Obb& b);
+  /// Body i's entry for (i, j) with boxes a and b, as a place in its list: the kept one when
+  /// both boxes are bitwise those of its test (a reuse; `test` false), else one placed for a
+  /// test to run now, its result still to be written (`test` true).
+  int place(int i, const Obb& a, int j, const Obb& b, bool& test);
+  /// Where body i's list holds pair (i, j), or -1.
+  int find(int i, int j) const;
+  /// place(), with the test run.
+  int entry(int i, const Obb& a, int j, const Obb& b);
+  /// Entry e of body i's list.
+  Entry& at(int i, int e);
+  /// Whether pair (i, j) was apart at its last test and still is beyond `margin` along that
+  /// test's axis (separatedBeyond): then `e` is its entry and `depth` the depth along the axis.
+  bool apartAlong(int i, const Obb& a, int j, const Obb& b, double margin, int& e,
+                  double& depth) const;
+  /// The manifold of a pair settled by apartAlong, with no points, counted as a one-axis check.
+  ContactManifold apartManifold(int i, int e, double depth);
+  /// Clips entry e of body i (boxes a and b) when its test is within `margin` and it is not
+  /// clipped yet; whether it did.
+  bool clipWithin(int i, int e, const Obb& a, const Obb& b, double margin);
+  /// The manifold of entry e of body i within `margin`: from its clip (clipWithin made it), or
+  /// none when its test is apart beyond the margin.
+  ContactManifold manifoldOf(int i, int e, const Obb& a, const Obb& b, double margin);
   /// Body `body`'s version for `box`: the one it had if the box is bitwise the last seen, else
   /// a new one.
   long versionOf(int body, const Obb& box);
-  /// Where body i's list holds pair (i, j), or -1.
-  int find(int i, int j) const;
   /// Box of body i of the batch's world.
   Obb boxOf(int i) const { return Obb::of(world_->bodies[static_cast<std::size_t>(i)]); }
   /// collideAll's rounds, up to the answers: afterwards answer(k) is request k's.

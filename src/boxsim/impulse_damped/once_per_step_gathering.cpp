@@ -336,25 +336,18 @@ bool OncePerStepGathering::planFastPair(const World& world, std::size_t k,
 void OncePerStepGathering::testFastPairs(const World& world, double margin) {
   if (fastTested_.size() < fastTests_.size()) fastTested_.resize(fastTests_.size());
   const int tests = static_cast<int>(fastTests_.size());
-  const auto test = [&](int t) {
+  // Two pointers' worth of capture, which a std::function holds without allocating.
+  const std::pair<const World*, double> pass{&world, margin};
+  const auto test = [this, &pass](int t) {
     const std::size_t slot = static_cast<std::size_t>(t);
     FastPairTask& task = fastTasks_[static_cast<std::size_t>(fastTests_[slot])];
-    task.touching = candidateManifold(world, task, margin, fastTested_[slot]);
+    task.touching = candidateManifold(*pass.first, task, pass.second, fastTested_[slot]);
   };
   // Each test reads the poses planFastPair left and writes its own candidate and slot: in any
   // order and on any thread, the same bits.
-  const bool shared = tests > 0 && tests >= params_.parallelNarrowPhases;
-  const auto start = ParallelWork::startOf(work_);
-  if (params_.threads > 1 && shared) {
-    parallelFor(tests, params_.threads, test);
+  if (sharedLoop(tests, params_.threads, params_.parallelNarrowPhases, work_,
+                 &ParallelWork::testSeconds, &ParallelWork::testRounds, test))
     ++parallelTestPasses_;
-  } else {
-    for (int t = 0; t < tests; ++t) test(t);
-  }
-  if (work_ && shared) {
-    ParallelWork::addSince(work_->testSeconds, start);
-    ParallelWork::countLoop(work_->testRounds, tests);
-  }
 }
 
 [[gnu::always_inline]] inline

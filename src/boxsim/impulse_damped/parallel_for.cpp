@@ -14,21 +14,30 @@ void parallelFor(int count, [[maybe_unused]] int threads, const std::function<vo
   for (int i = 0; i < count; ++i) item(i);
 }
 
+bool sharedLoop(int count, int threads, int minItems, ParallelWork* work,
+                double ParallelWork::*seconds, ParallelWork::Rounds ParallelWork::*rounds,
+                const std::function<void(int)>& item) {
+  const bool shared = count > 0 && count >= minItems;
+  const auto start = ParallelWork::startOf(shared ? work : nullptr);
+  const bool threaded = threads > 1 && shared;
+  if (threaded) {
+    parallelFor(count, threads, item);
+  } else {
+    for (int i = 0; i < count; ++i) item(i);
+  }
+  if (work && shared) {
+    ParallelWork::addSince(work->*seconds, start);
+    ParallelWork::countLoop(work->*rounds, count);
+  }
+  return threaded;
+}
+
 std::function<void(int, const std::function<void(int)>&)> keptNarrowPhaseLoop(int threads,
                                                                              int minItems,
                                                                              ParallelWork* work) {
   return [threads, minItems, work](int count, const std::function<void(int)>& item) {
-    const bool shared = count > 0 && count >= minItems;
-    const auto start = ParallelWork::startOf(shared ? work : nullptr);
-    if (threads > 1 && shared) {
-      parallelFor(count, threads, item);
-    } else {
-      for (int i = 0; i < count; ++i) item(i);
-    }
-    if (work && shared) {
-      ParallelWork::addSince(work->keptSeconds, start);
-      ParallelWork::countLoop(work->keptRounds, count);
-    }
+    sharedLoop(count, threads, minItems, work, &ParallelWork::keptSeconds,
+               &ParallelWork::keptRounds, item);
   };
 }
 

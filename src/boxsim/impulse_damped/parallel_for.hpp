@@ -54,10 +54,16 @@ struct ParallelWork {
   }
 };
 
-/// The loop of a batch of kept narrow phases (KeptNarrowPhase::setLoop): parallelFor on
-/// `threads` threads when a round has at least `minItems` items (ImpulseParams::
-/// parallelNarrowPhases), else in order on the calling thread; such a round's time and rounds
-/// are added to work->keptSeconds and keptRounds when `work` is given (it must outlive the loop).
+/// item(i) for i in [0, count): a shared loop when there are at least `minItems` items
+/// (ImpulseParams::parallelNarrowPhases), run by parallelFor on `threads` threads, else in
+/// order on the calling thread. A shared loop's time and rounds are added to work->*seconds and
+/// work->*rounds when `work` is given. Returns whether the loop ran on several threads.
+bool sharedLoop(int count, int threads, int minItems, ParallelWork* work,
+                double ParallelWork::*seconds, ParallelWork::Rounds ParallelWork::*rounds,
+                const std::function<void(int)>& item);
+
+/// The loop of a batch of kept narrow phases (KeptNarrowPhase::setLoop): each round a
+/// sharedLoop measured into work->keptSeconds and keptRounds (`work` must outlive the loop).
 std::function<void(int, const std::function<void(int)>&)> keptNarrowPhaseLoop(int threads,
                                                                              int minItems,
                                                                              ParallelWork* work);
