@@ -20,6 +20,35 @@ double fixLiftLimit(const RigidBody& body, const FixContactParams& params, const
   return std::max(params.maxNudges * params.nudge * ell, travel);
 }
 
+namespace {
+/// How many nudges of `step` m the loop of FIXCONTACTCONSTRAINTS L6-L7 makes after a test
+/// before the next test that could stop it: one, then more while the test before each is
+/// certain to find the pair still deeper than `slop` (m), by the bound `after`
+/// (DepthAfterTranslation::atLeast of k nudges, 1.01 k step for |offset| = 1 up to rounding);
+/// at most `most` (>= 1). The bound falls as k grows (every operation in it is monotone), so the
+/// first k it does not hold for is found by doubling and halving instead of one by one: a body
+/// the step carried deep into a landing is nudged hundreds of times at once.
+long nudgesBeforeTest(const DepthAfterTranslation& after, double step, double slop, long most) {
+  const auto deeper = [&](long k) { return after.atLeast(1.01 * step * static_cast<double>(k)) > slop; };
+  // Invariant: deeper(low) holds (or low = 0, before the first nudge), and the answer is above it.
+  long low = 0, high = 1;
+  while (high < most && deeper(high)) {
+    low = high;
+    high = std::min(most, 2 * high);
+  }
+  if (high >= most && deeper(most)) return most;
+  // The answer is the first k in (low, high] where deeper(k) fails.
+  while (high - low > 1) {
+    const long mid = low + (high - low) / 2;
+    if (deeper(mid))
+      low = mid;
+    else
+      high = mid;
+  }
+  return high;
+}
+}  // namespace
+
 int fixContactConstraints(World& world, double margin, const FixContactParams& params, double dt,
                           std::vector<ContactManifold>* gathered,
                           const std::vector<std::pair<int, int>>* pairs,
@@ -81,18 +110,19 @@ int fixContactConstraints(World& world, double margin, const FixContactParams& p
       // rounding): those tests are left out, the nudges are the same additions, and the
       // loop stops where FIXCONTACTCONSTRAINTS L6-L7 would.
       const DepthAfterTranslation after(box, stable, sat);
-      int k = 0;
-      do {
-        if (share) {
-          moving.s.x += (0.5 * step) * offset;  // x alone: nothing derived changes
-          other.s.x -= (0.5 * step) * offset;
-        } else {
-          moving.s.x += step * offset;
-        }
-        ++nudges;
-        ++n;
-        ++k;
-      } while (n < limit && after.atLeast(1.01 * step * k) > slop);
+      const long k = nudgesBeforeTest(after, step, slop, limit - n);
+      // The nudges themselves, one addition each as L7 makes them (the same bits as nudging
+      // and testing in turn); x alone: nothing derived changes.
+      if (share) {
+        const Vec3 half = (0.5 * step) * offset;
+        for (long i = 0; i < k; ++i) moving.s.x += half;
+        for (long i = 0; i < k; ++i) other.s.x -= half;
+      } else {
+        const Vec3 whole = step * offset;
+        for (long i = 0; i < k; ++i) moving.s.x += whole;
+      }
+      nudges += static_cast<int>(k);
+      n += k;
     }
   }
   return nudges;
