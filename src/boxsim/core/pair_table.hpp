@@ -19,22 +19,35 @@ template <class T>
 class PairTable {
  public:
   /// The value of (i, j), default-constructed and inserted when absent.
-  T& at(int i, int j) {
+  T& at(int i, int j) { return values_[place(i, j)]; }
+  /// The value of (i, j), or nullptr when absent; inserts nothing.
+  const T* find(int i, int j) const {
+    const long p = placeOf(i, j);
+    return p >= 0 ? &values_[static_cast<std::size_t>(p)] : nullptr;
+  }
+  /// The place of (i, j)'s value, its value default-constructed and inserted when absent: the
+  /// number of values inserted before it. A place stays the pair's until clear(), so a caller
+  /// that asks for a pair many times can keep its place and reach the value without a lookup.
+  std::size_t place(int i, int j) {
     if (2 * (keys_.size() + 1) > slots_.size()) rebuild(slots_.empty() ? 64 : 2 * slots_.size());
     const std::uint64_t key = keyOf(i, j);
     Slot& slot = slots_[slotOf(key)];
-    if (slot.index != 0) return values_[slot.index - 1];
+    if (slot.index != 0) return slot.index - 1;
     keys_.push_back(key);
     values_.emplace_back();
     slot = Slot{key, static_cast<std::uint32_t>(keys_.size())};
-    return values_.back();
+    return keys_.size() - 1;
   }
-  /// The value of (i, j), or nullptr when absent; inserts nothing.
-  const T* find(int i, int j) const {
-    if (slots_.empty()) return nullptr;
+  /// The place of (i, j)'s value (place()), or -1 when absent; inserts nothing.
+  long placeOf(int i, int j) const {
+    if (slots_.empty()) return -1;
     const Slot& slot = slots_[slotOf(keyOf(i, j))];
-    return slot.index != 0 ? &values_[slot.index - 1] : nullptr;
+    return static_cast<long>(slot.index) - 1;
   }
+  /// The value at place `p` (place(), placeOf()).
+  T& value(std::size_t p) { return values_[p]; }
+  /// The value at place `p` (place(), placeOf()).
+  const T& value(std::size_t p) const { return values_[p]; }
   /// Number of values.
   std::size_t size() const { return keys_.size(); }
   /// Exchanges the contents of two tables.

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <stdexcept>
 
@@ -58,19 +59,22 @@ Vec3 ContactNormalTracker::signedDistanceNormal(const World& world,
   return sum.normalized();
 }
 
-void ContactNormalTracker::remember(const World& world, const ContactManifold& m) {
-  if (model_ != ContactNormalModel::PreviousClosestFace || m.kind == AxisKind::EdgeEdge) return;
-  // The face the manifold was built on, signed so that it points from a to b.
+ContactNormalTracker::FaceRef ContactNormalTracker::faceOf(const World& world,
+                                                           const ContactManifold& m) {
   const bool onB = m.kind == AxisKind::FaceB;
   const Mat3& R = world.bodies[onB ? m.b : m.a].R;
   int axis = 0;
   for (int i = 1; i < 3; ++i)
     if (std::abs(R.col(i).dot(m.normal)) > std::abs(R.col(axis).dot(m.normal))) axis = i;
-  current_.at(m.a, m.b) = FaceRef{onB, axis, R.col(axis).dot(m.normal) < 0.0 ? -1.0 : 1.0};
+  return FaceRef{onB, axis, R.col(axis).dot(m.normal) < 0.0 ? -1.0 : 1.0};
 }
 
-ImpulseContact ContactNormalTracker::contactOf(const World& world, const ContactManifold& m,
-                                               bool record) {
+void ContactNormalTracker::remember(const World& world, const ContactManifold& m) {
+  if (model_ != ContactNormalModel::PreviousClosestFace || m.kind == AxisKind::EdgeEdge) return;
+  current_.at(m.a, m.b) = faceOf(world, m);
+}
+
+ImpulseContact ContactNormalTracker::baseContact(const World& world, const ContactManifold& m) {
   // COLLIDE L7: findContactPoint, the centroid of the pair's manifold.
   const Vec3 p = m.centroid();
   const Friction friction = combinedFriction(world.bodies[m.a].friction, world.bodies[m.b].friction);
@@ -93,6 +97,12 @@ ImpulseContact ContactNormalTracker::contactOf(const World& world, const Contact
     }
     c.patch.radius = contactPatchRadius(m, outline);
   }
+  return c;
+}
+
+ImpulseContact ContactNormalTracker::contactOf(const World& world, const ContactManifold& m,
+                                               bool record) {
+  ImpulseContact c = baseContact(world, m);
   switch (model_) {
     case ContactNormalModel::SeparatingAxis:
       break;
@@ -101,11 +111,31 @@ ImpulseContact ContactNormalTracker::contactOf(const World& world, const Contact
       break;
     case ContactNormalModel::PreviousClosestFace: {
       if (record) remember(world, m);
-      if (const FaceRef* f = previous_.find(m.a, m.b))
-        c.normal = f->sign * world.bodies[f->onB ? m.b : m.a].R.col(f->axis);
+      if (const FaceRef* f = previous_.find(m.a, m.b)) c.normal = normalOf(world, m, *f);
       break;
     }
   }
+  return c;
+}
+
+ImpulseContact ContactNormalTracker::contactOf(const World& world, const ContactManifold& m,
+                                               FacePlaces& places) {
+  if (model_ != ContactNormalModel::PreviousClosestFace) return contactOf(world, m);
+  ImpulseContact c = baseContact(world, m);
+  // The places of a step are those of the tables as they stand in it: found once in the step
+  // (previous_ is not changed within one; current_ only grows, its places stay).
+  if (places.step != generation_) {
+    places.step = generation_;
+    places.current = -1;
+    places.previous = static_cast<int>(previous_.placeOf(m.a, m.b));
+  }
+  // remember(world, m), through the pair's place once it has one.
+  if (m.kind != AxisKind::EdgeEdge) {
+    if (places.current < 0) places.current = static_cast<int>(current_.place(m.a, m.b));
+    current_.value(static_cast<std::size_t>(places.current)) = faceOf(world, m);
+  }
+  if (places.previous >= 0)
+    c.normal = normalOf(world, m, previous_.value(static_cast<std::size_t>(places.previous)));
   return c;
 }
 
@@ -120,6 +150,12 @@ std::vector<ImpulseContact> ContactNormalTracker::contactsOf(
 void ContactNormalTracker::endStep() {
   previous_.swap(current_);
   current_.clear();
+  generation_ = nextGeneration();
+}
+
+std::uint64_t ContactNormalTracker::nextGeneration() {
+  static std::atomic<std::uint64_t> count{0};
+  return ++count;
 }
 
 }  // namespace boxsim

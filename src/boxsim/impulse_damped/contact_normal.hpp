@@ -5,6 +5,7 @@
 /// distance (the improvement the footnote proposes, after Guendelman et al.'s signed distance).
 #pragma once
 
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -58,6 +59,17 @@ class ContactNormalTracker {
   /// The contact of one manifold, as contactsOf gives it; with `record` false the manifold's
   /// face is not remembered (see remember).
   ImpulseContact contactOf(const World& world, const ContactManifold& m, bool record = true);
+  /// Where one pair's faces sit in the tracker's tables in a step (contactOf with places), kept
+  /// by the caller, one per pair: a default one, or one from an earlier step, is found afresh.
+  struct FacePlaces {
+    std::uint64_t step = 0;  ///< the tables' generation they were found in; 0: never
+    int current = -1;        ///< the pair's place in this step's faces, -1: not remembered yet
+    int previous = -1;       ///< its place in the previous step's faces, -1: none
+  };
+  /// contactOf(world, m), the same contact and the same face remembered, with the pair's places
+  /// in the tables of faces kept in `places` (the pair's own, m.a and m.b its bodies): a pair
+  /// asked for in every pass of a step is looked up once in the step, not in every pass.
+  ImpulseContact contactOf(const World& world, const ContactManifold& m, FacePlaces& places);
   /// Remembers the face a touching pair's manifold was built on, for the next step
   /// (PreviousClosestFace; the other models remember nothing). Called once per pass a pair is
   /// gathered in; a pair remembered twice in a step keeps the later face.
@@ -77,6 +89,15 @@ class ContactNormalTracker {
     double sign = 1.0;
   };
   Vec3 signedDistanceNormal(const World& world, const ContactManifold& m) const;
+  /// The contact of a manifold with the separating-axis normal: its point, lever arms, depth,
+  /// friction and patch; the normal model's normal is set by the callers.
+  static ImpulseContact baseContact(const World& world, const ContactManifold& m);
+  /// The face a face manifold was built on, signed so that it points from a to b.
+  static FaceRef faceOf(const World& world, const ContactManifold& m);
+  /// Face f's normal where the bodies of m stand now.
+  static Vec3 normalOf(const World& world, const ContactManifold& m, const FaceRef& f) {
+    return f.sign * world.bodies[f.onB ? m.b : m.a].R.col(f.axis);
+  }
 
   ContactNormalModel model_;
   /// The previous step's faces by pair (a, b).
@@ -84,6 +105,11 @@ class ContactNormalTracker {
   /// The faces recorded in this step by pair; a pair recorded twice keeps the later face, as a
   /// map assignment would.
   PairTable<FaceRef> current_;
+  /// Names the tables as they stand in this step, for FacePlaces: a new number, never 0, at
+  /// construction and at every endStep (from one count shared by every tracker, so that places
+  /// found with one tracker are never taken for another's).
+  std::uint64_t generation_ = nextGeneration();
+  static std::uint64_t nextGeneration();
 };
 
 }  // namespace boxsim

@@ -14,6 +14,7 @@
 #include "boxsim/collision/separating_axis.hpp"
 #include "boxsim/collision/sweep_and_prune.hpp"
 #include "boxsim/core/world.hpp"
+#include "boxsim/impulse_damped/contact_normal.hpp"
 #include "boxsim/impulse_damped/slow_pair_cache.hpp"
 #include "boxsim/impulse_damped/step_bodies.hpp"
 
@@ -43,6 +44,8 @@ class StepCandidates {
     int manifold = -1;
     /// The pair's entry in the slow-pair cache, or -1: not cached.
     int cached = -1;
+    /// The pair's places in the normal model's tables of faces, for its contacts in the passes.
+    ContactNormalTracker::FacePlaces faces{};
   };
 
   /// `slowWidening`: ImpulseParams::slowWidening; each body's swept bounds hold its bounds
