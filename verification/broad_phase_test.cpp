@@ -317,6 +317,57 @@ TEST_CASE("Both broad phases over given bounds equal the all-pairs test on those
                     std::invalid_argument);
 }
 
+TEST_CASE("separatingAxisTestWithin is the full test but for pairs its faces prove apart beyond "
+          "the margin",
+          "[collision][sat]") {
+  // Random box pairs near each other, a quarter of them aligned (flush faces, ties), margins up
+  // to 5 cm. A pair whose full test is within the margin gets the full test's result bit for
+  // bit; any other gets a face of its own apart by at least the margin, no deeper than the full
+  // test says, and so the same manifold within the margin: none.
+  testing::SeededRandom random(6161);
+  int within = 0, shortcut = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const bool aligned = k % 4 == 0;
+    const Mat3 ra = aligned ? Mat3::Identity() : Mat3(random.rotation().toRotationMatrix());
+    const Mat3 rb = aligned ? Mat3::Identity() : Mat3(random.rotation().toRotationMatrix());
+    const Obb a{random.vector(-1.0, 1.0), ra, random.vector(0.05, 1.0)};
+    const Obb b{random.vector(-1.5, 1.5), rb, random.vector(0.05, 1.0)};
+    const double margin = random.uniform(0.0, 0.05);
+    const SeparatingAxisResult full = separatingAxisTest(a, b);
+    const SeparatingAxisResult near = separatingAxisTestWithin(a, b, margin);
+    INFO("pair " << k);
+    if (full.depth > -margin) {
+      ++within;
+      REQUIRE(sameBits(near.depth, full.depth));
+      REQUIRE(sameBits(near.normal, full.normal));
+      REQUIRE(near.kind == full.kind);
+      REQUIRE(near.indexA == full.indexA);
+      REQUIRE(near.indexB == full.indexB);
+      REQUIRE(near.intersecting == full.intersecting);
+      continue;
+    }
+    REQUIRE(near.depth <= -margin);
+    REQUIRE(near.depth >= full.depth);
+    REQUIRE(!near.intersecting);
+    REQUIRE(buildContactManifold(a, b, near, margin).count == 0);
+    REQUIRE(buildContactManifold(a, b, full, margin).count == 0);
+    if (near.kind != full.kind || !sameBits(near.depth, full.depth)) {
+      ++shortcut;
+      REQUIRE(near.kind != AxisKind::EdgeEdge);
+    }
+  }
+  CHECK(within > 2000);
+  CHECK(shortcut > 1000);
+  // No margin to speak of: the full test.
+  const Obb unit{Vec3::Zero(), Mat3::Identity(), Vec3::Constant(0.5)};
+  const Obb far{Vec3(3.0, 0.2, 0.1), Mat3(Eigen::AngleAxisd(0.4, Vec3::UnitY()).toRotationMatrix()),
+                Vec3::Constant(0.5)};
+  CHECK(sameBits(separatingAxisTestWithin(unit, far, std::nan("")).depth,
+                 separatingAxisTest(unit, far).depth));
+  CHECK(sameBits(separatingAxisTestWithin(unit, far, -1.0).depth,
+                 separatingAxisTest(unit, far).depth));
+}
+
 TEST_CASE("separatedBeyond says 'apart' only when the full separating-axis test does",
           "[collision][sat]") {
   // Random box pairs near each other; the axis tried is the full test's own answer for the

@@ -348,10 +348,24 @@ std::optional<EdgeAxis> bestEdge(const Obb& a, const Obb& b, const Vec3& D, cons
   return edge;
 }
 
-}  // namespace
+/// The test's result from its best face alone (AxisCandidate), not intersecting.
+SeparatingAxisResult faceResult(const AxisCandidate& face) {
+  SeparatingAxisResult result;
+  result.intersecting = false;
+  result.depth = face.depth;
+  result.normal = face.normal;
+  result.kind = face.kind;
+  result.indexA = face.indexA;
+  result.indexB = face.indexB;
+  return result;
+}
 
-SeparatingAxisResult separatingAxisTest(const Obb& a, const Obb& b,
-                                        const SeparatingAxisParams& params) {
+/// separatingAxisTest, and separatingAxisTestWithin when kWithin (margin in m, >= 0; unread
+/// otherwise).
+template <bool kWithin>
+[[gnu::always_inline]] inline
+SeparatingAxisResult testAxes(const Obb& a, const Obb& b, const SeparatingAxisParams& params,
+                              [[maybe_unused]] double margin) {
   const Vec3 D = b.center - a.center;
 
   // C_ij = a_i . b_j. Written as dot products so that the swapped call, which computes
@@ -371,6 +385,11 @@ SeparatingAxisResult separatingAxisTest(const Obb& a, const Obb& b,
   // The two bars an edge axis must get under to be chosen instead of the face (see "Face or
   // edge" below): edgeBar when the boxes overlap, face.depth when they do not.
   const double edgeBar = face.depth * (1.0 - params.edgeBias);
+  // Within a margin: the best face apart by at least the margin settles it (see
+  // separatingAxisTestWithin; with the face at depth <= 0, "Face or edge" below reports it or an
+  // edge axis deeper apart still).
+  if constexpr (kWithin)
+    if (face.depth <= -margin) return faceResult(face);
 
   // --- Edge-edge axes L = a_i x b_j ---
   // SeparatingAxisParams::skipLosingEdgeAxes off: bars no overlap reaches, every axis in.
@@ -410,6 +429,20 @@ SeparatingAxisResult separatingAxisTest(const Obb& a, const Obb& b,
     result.indexB = face.indexB;
   }
   return result;
+}
+
+}  // namespace
+
+SeparatingAxisResult separatingAxisTest(const Obb& a, const Obb& b,
+                                        const SeparatingAxisParams& params) {
+  return testAxes<false>(a, b, params, 0.0);
+}
+
+SeparatingAxisResult separatingAxisTestWithin(const Obb& a, const Obb& b, double margin,
+                                              const SeparatingAxisParams& params) {
+  // NaN or a negative margin: no shortcut, the full test.
+  if (!(margin >= 0.0)) return separatingAxisTest(a, b, params);
+  return testAxes<true>(a, b, params, margin);
 }
 
 bool separatedBeyond(const Obb& a, const Obb& b, const SeparatingAxisResult& axis, double margin,

@@ -67,6 +67,18 @@ struct SeparatingAxisParams {
 SeparatingAxisResult separatingAxisTest(const Obb& a, const Obb& b,
                                         const SeparatingAxisParams& params = {});
 
+/// separatingAxisTest(a, b, params) for a caller that needs only the contact within `margin`
+/// (m, >= 0): boxes whose best face axis (the full test's own, its ties and all) is apart by at
+/// least the margin get that face's result, the edge axes not looked at: depth <= -margin,
+/// intersecting false, the face's normal, kind and indices. The full test's depth is then no
+/// greater (it reports that face or an edge axis apart by more), so buildContactManifold within
+/// the margin gives no point for either, and separatedBeyond may measure along the face next
+/// time. Every other pair gets the full test's result, bit for bit. For boxes apart the edge
+/// axes (a cross product, a root and a division each; none can be left out as losing) are most
+/// of the test's cost. A negative or NaN margin runs the full test.
+SeparatingAxisResult separatingAxisTestWithin(const Obb& a, const Obb& b, double margin,
+                                              const SeparatingAxisParams& params = {});
+
 /// A one-axis shortcut of separatingAxisTest for a pair tested before (temporal coherence, as
 /// in Gottschalk, Lin and Manocha's OBBTree, 1996, and most engines' cached separating axes):
 /// the depth along the axis `axis` named (its kind, indexA and indexB; typically the answer

@@ -394,7 +394,9 @@ bool OncePerStepGathering::candidateManifold(const World& world, FastPairTask& t
   // Apart last time, and still apart along the same axis: the full test would say so too.
   task.axisChecked = candidate.apart && separatedBeyond(a, b, candidate.axis, margin);
   if (task.axisChecked) return false;
-  const SeparatingAxisResult sat = separatingAxisTest(a, b);
+  // Only the contact within the margin is wanted: a pair its faces prove apart beyond it is
+  // settled without its edge axes (the same manifold, none).
+  const SeparatingAxisResult sat = separatingAxisTestWithin(a, b, margin);
   manifold = buildContactManifold(a, b, sat, margin);
   candidate.axis = sat;
   candidate.apart = manifold.count == 0;
