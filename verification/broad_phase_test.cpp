@@ -10,6 +10,7 @@
 #include <catch2/catch.hpp>
 
 #include "seeded_random.hpp"
+#include "test_worlds.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -338,12 +339,7 @@ TEST_CASE("separatingAxisTestWithin is the full test but for pairs its faces pro
     INFO("pair " << k);
     if (full.depth > -margin) {
       ++within;
-      REQUIRE(sameBits(near.depth, full.depth));
-      REQUIRE(sameBits(near.normal, full.normal));
-      REQUIRE(near.kind == full.kind);
-      REQUIRE(near.indexA == full.indexA);
-      REQUIRE(near.indexB == full.indexB);
-      REQUIRE(near.intersecting == full.intersecting);
+      REQUIRE(testing::sameResult(near, full));
       continue;
     }
     REQUIRE(near.depth <= -margin);

@@ -10,6 +10,7 @@
 #include <catch2/catch.hpp>
 
 #include "seeded_random.hpp"
+#include "test_worlds.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -295,12 +296,7 @@ TEST_CASE("Leaving out the edge axes that lose to the face changes no bit of the
     const SeparatingAxisResult fast = separatingAxisTest(a, b);
     const SeparatingAxisResult all = separatingAxisTest(a, b, plain);
     INFO("trial " << trial << " kind " << kind << " depth " << all.depth);
-    REQUIRE(sameBits(fast.depth, all.depth));
-    REQUIRE(sameBits(fast.normal, all.normal));
-    REQUIRE(fast.kind == all.kind);
-    REQUIRE(fast.indexA == all.indexA);
-    REQUIRE(fast.indexB == all.indexB);
-    REQUIRE(fast.intersecting == all.intersecting);
+    REQUIRE(testing::sameResult(fast, all));
     if (!all.intersecting) ++apart;
     else if (all.kind == AxisKind::EdgeEdge) ++edges;
     else ++faces;

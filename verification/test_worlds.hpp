@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "boxsim/collision/contact.hpp"
 #include "boxsim/core/math.hpp"
 #include "boxsim/core/world.hpp"
 
@@ -53,6 +54,12 @@ inline HeapMeasure measureHeap(const World& world, double volume, double height)
   }
   if (m.count > 0) m.rmsRadius = std::sqrt(sumSquares / m.count);
   return m;
+}
+
+/// Whether two separating-axis results are the same bit for bit, every field.
+inline bool sameResult(const SeparatingAxisResult& x, const SeparatingAxisResult& y) {
+  return sameBits(x.depth, y.depth) && sameBits(x.normal, y.normal) && x.kind == y.kind &&
+         x.indexA == y.indexA && x.indexB == y.indexB && x.intersecting == y.intersecting;
 }
 
 }  // namespace boxsim::testing

@@ -348,7 +348,7 @@ std::optional<EdgeAxis> bestEdge(const Obb& a, const Obb& b, const Vec3& D, cons
   return edge;
 }
 
-/// The test's result from its best face alone (AxisCandidate), not intersecting.
+/// The test's result from its best face (AxisCandidate), marked not intersecting.
 SeparatingAxisResult faceResult(const AxisCandidate& face) {
   SeparatingAxisResult result;
   result.intersecting = false;
@@ -413,7 +413,7 @@ SeparatingAxisResult testAxes(const Obb& a, const Obb& b, const SeparatingAxisPa
                                              : edge->depth < face.depth - tieWidth ||
                                                    face.depth > 0.0);
 
-  SeparatingAxisResult result;
+  SeparatingAxisResult result = faceResult(face);
   result.intersecting = intersecting;
   if (useEdge) {
     result.depth = edge->depth;
@@ -421,12 +421,6 @@ SeparatingAxisResult testAxes(const Obb& a, const Obb& b, const SeparatingAxisPa
     result.kind = AxisKind::EdgeEdge;
     result.indexA = edge->indexA;
     result.indexB = edge->indexB;
-  } else {
-    result.depth = face.depth;
-    result.normal = face.normal;
-    result.kind = face.kind;
-    result.indexA = face.indexA;
-    result.indexB = face.indexB;
   }
   return result;
 }
