@@ -350,14 +350,7 @@ std::optional<EdgeAxis> bestEdge(const Obb& a, const Obb& b, const Vec3& D, cons
 
 /// The test's result from its best face (AxisCandidate), marked not intersecting.
 SeparatingAxisResult faceResult(const AxisCandidate& face) {
-  SeparatingAxisResult result;
-  result.intersecting = false;
-  result.depth = face.depth;
-  result.normal = face.normal;
-  result.kind = face.kind;
-  result.indexA = face.indexA;
-  result.indexB = face.indexB;
-  return result;
+  return {false, face.depth, face.normal, face.kind, face.indexA, face.indexB};
 }
 
 /// separatingAxisTest, and separatingAxisTestWithin when kWithin (margin in m, >= 0; unread

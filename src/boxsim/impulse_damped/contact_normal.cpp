@@ -101,7 +101,7 @@ ImpulseContact ContactNormalTracker::baseContact(const World& world, const Conta
 }
 
 ImpulseContact ContactNormalTracker::contactOf(const World& world, const ContactManifold& m,
-                                               bool record) {
+                                               bool record, FacePlaces* places) {
   ImpulseContact c = baseContact(world, m);
   switch (model_) {
     case ContactNormalModel::SeparatingAxis:
@@ -110,32 +110,28 @@ ImpulseContact ContactNormalTracker::contactOf(const World& world, const Contact
       c.normal = signedDistanceNormal(world, m);
       break;
     case ContactNormalModel::PreviousClosestFace: {
-      if (record) remember(world, m);
-      if (const FaceRef* f = previous_.find(m.a, m.b)) c.normal = normalOf(world, m, *f);
+      // The pair's places, when kept, are found once in a step: previous_ does not change
+      // within one, and current_ only grows, so its places stay.
+      if (places && places->step != generation_) {
+        places->step = generation_;
+        places->current = -1;
+        places->previous = static_cast<int>(previous_.placeOf(m.a, m.b));
+      }
+      if (record && m.kind != AxisKind::EdgeEdge) {  // remember(world, m)
+        if (places && places->current < 0)
+          places->current = static_cast<int>(current_.place(m.a, m.b));
+        FaceRef& face = places ? current_.value(static_cast<std::size_t>(places->current))
+                               : current_.at(m.a, m.b);
+        face = faceOf(world, m);
+      }
+      const FaceRef* previous =
+          !places ? previous_.find(m.a, m.b)
+          : places->previous >= 0 ? &previous_.value(static_cast<std::size_t>(places->previous))
+                                  : nullptr;
+      if (previous) c.normal = normalOf(world, m, *previous);
       break;
     }
   }
-  return c;
-}
-
-ImpulseContact ContactNormalTracker::contactOf(const World& world, const ContactManifold& m,
-                                               FacePlaces& places) {
-  if (model_ != ContactNormalModel::PreviousClosestFace) return contactOf(world, m);
-  ImpulseContact c = baseContact(world, m);
-  // The places of a step are those of the tables as they stand in it: found once in the step
-  // (previous_ is not changed within one; current_ only grows, its places stay).
-  if (places.step != generation_) {
-    places.step = generation_;
-    places.current = -1;
-    places.previous = static_cast<int>(previous_.placeOf(m.a, m.b));
-  }
-  // remember(world, m), through the pair's place once it has one.
-  if (m.kind != AxisKind::EdgeEdge) {
-    if (places.current < 0) places.current = static_cast<int>(current_.place(m.a, m.b));
-    current_.value(static_cast<std::size_t>(places.current)) = faceOf(world, m);
-  }
-  if (places.previous >= 0)
-    c.normal = normalOf(world, m, previous_.value(static_cast<std::size_t>(places.previous)));
   return c;
 }
 

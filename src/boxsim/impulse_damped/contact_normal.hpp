@@ -56,20 +56,20 @@ class ContactNormalTracker {
   /// lever arms are from the bodies' centres where they stand to the manifold's centroid.
   std::vector<ImpulseContact> contactsOf(const World& world,
                                          const std::vector<ContactManifold>& manifolds);
-  /// The contact of one manifold, as contactsOf gives it; with `record` false the manifold's
-  /// face is not remembered (see remember).
-  ImpulseContact contactOf(const World& world, const ContactManifold& m, bool record = true);
-  /// Where one pair's faces sit in the tracker's tables in a step (contactOf with places), kept
-  /// by the caller, one per pair: a default one, or one from an earlier step, is found afresh.
+  /// Where one pair's faces sit in the tracker's tables in a step (contactOf), kept by the
+  /// caller, one per pair: a default one, or one from an earlier step, is found afresh.
   struct FacePlaces {
     std::uint64_t step = 0;  ///< the tables' generation they were found in; 0: never
     int current = -1;        ///< the pair's place in this step's faces, -1: not remembered yet
     int previous = -1;       ///< its place in the previous step's faces, -1: none
   };
-  /// contactOf(world, m), the same contact and the same face remembered, with the pair's places
-  /// in the tables of faces kept in `places` (the pair's own, m.a and m.b its bodies): a pair
-  /// asked for in every pass of a step is looked up once in the step, not in every pass.
-  ImpulseContact contactOf(const World& world, const ContactManifold& m, FacePlaces& places);
+  /// The contact of one manifold, as contactsOf gives it; with `record` false the manifold's
+  /// face is not remembered (see remember). `places`, when given, are the pair's own (m.a and
+  /// m.b its bodies), kept by the caller: a pair asked for in every pass of a step is then
+  /// looked up in the tables of faces once in the step, not in every pass; the same contact
+  /// and the same face remembered.
+  ImpulseContact contactOf(const World& world, const ContactManifold& m, bool record = true,
+                           FacePlaces* places = nullptr);
   /// Remembers the face a touching pair's manifold was built on, for the next step
   /// (PreviousClosestFace; the other models remember nothing). Called once per pass a pair is
   /// gathered in; a pair remembered twice in a step keeps the later face.

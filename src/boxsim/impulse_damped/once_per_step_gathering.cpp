@@ -362,7 +362,7 @@ void OncePerStepGathering::finishFastPair(World& world, const FastPairTask& task
     if (m.count == 0) return;
     m.a = a;
     m.b = b;
-    fastContacts_.push_back(normals.contactOf(world, m, candidate.faces));
+    fastContacts_.push_back(normals.contactOf(world, m, true, &candidate.faces));
   };
   if (task.test < 0) {
     addContact(manifolds_[static_cast<std::size_t>(task.manifold)]);
