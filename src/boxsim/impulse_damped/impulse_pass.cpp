@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <optional>
 
 #include "boxsim/collision/broad_phase.hpp"
 #include "boxsim/core/newtonian_impulse.hpp"
@@ -71,8 +72,9 @@ double contactImpulse(RigidBody& a, RigidBody& b, const ImpulseContact& contact,
   if (contact.friction.frictionless())
     return applyNewtonianImpulse(a, b, contact.ra, contact.rb, contact.normal, restitution,
                                  supportA, supportB);
-  FrictionSum alone;
-  FrictionSum& sum = given ? *given : totals ? totals->at(contact.a, contact.b) : alone;
+  // A sum of its own only for a contact with neither (its rows are a kilobyte to clear).
+  std::optional<FrictionSum> alone;
+  FrictionSum& sum = given ? *given : totals ? totals->at(contact.a, contact.b) : alone.emplace();
   // Friction first, on the budget of the passes before, so that the normal impulse, which
   // keeps the bodies apart, has the last word (Catto 2005 orders them so too).
   // A restarted contact's tipping is taken away by COLLIDE L11-L14 itself: no couple for it.
