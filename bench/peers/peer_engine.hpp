@@ -83,6 +83,7 @@ struct StepWork {
 struct SharedWork {
   double stepSeconds = 0.0;  ///< s, the run's steps, every stage (DampedStepProfile::total)
   ParallelWork work;         ///< the part of them the threads would share
+  long steps = 0;            ///< the run's steps
 };
 
 /// An engine under comparison.

@@ -299,6 +299,23 @@ std::string coresModel(const std::vector<SceneResults>& scenes) {
       if (two && two->meanMs() > 0.0)
         out << "; measured here on 2 threads " << fixed(r->meanMs() / two->meanMs(), 2)
             << "× (the means of the two rows)";
+      const SharedWork* t = r->sharedWorkTwoThreads ? &*r->sharedWorkTwoThreads : nullptr;
+      if (t && t->steps > 0 && w.steps > 0 && shared > 0.0) {
+        // The same loops and the rest of the step, in ms a step, on one thread and on two.
+        const auto loops = [](const SharedWork& x) {
+          return x.work.testSeconds + x.work.levelSeconds + x.work.keptSeconds;
+        };
+        const auto ms = [](double seconds, long steps) {
+          return fixed(1000.0 * seconds / static_cast<double>(steps), 2);
+        };
+        // The model's loops on 2 threads, as a share of the one-thread step.
+        const double modelLoops = 1.0 / speedup(1) - (1.0 - shared);
+        out << "; in untimed runs of their own the shared loops took " << ms(loops(w), w.steps)
+            << " ms a step on 1 thread and " << ms(loops(*t), t->steps) << " on 2 ("
+            << fixed(loops(w) / std::max(loops(*t), 1e-12), 2) << "×, the model "
+            << fixed(shared / modelLoops, 2) << "×), the rest " << ms(w.stepSeconds - loops(w), w.steps)
+            << " and " << ms(t->stepSeconds - loops(*t), t->steps) << " ms";
+      }
       out << "\n";
     }
   if (out.str().empty()) return "";
@@ -315,7 +332,9 @@ std::string coresModel(const std::vector<SceneResults>& scenes) {
          "times its rounds on N over its rounds on one, as if every item cost the same and the "
          "threads met for free, so it is an upper bound. The two-thread rows of the table are "
          "measured on this 2-core machine, where a second busy core slows the first (the impulse "
-         "chapter, \"Threads\"):\n\n" + out.str() + "\n";
+         "chapter, \"Threads\"); beside them, the shared loops and the rest of the step as they "
+         "ran on 1 and on 2 threads, each in an untimed run of its own, show which part of the "
+         "model this machine does not give:\n\n" + out.str() + "\n";
 }
 
 /// \thesis{§6.1}: the frame rates the thesis reports (Fig. 6.6, the shot pyramid, 25 fps;

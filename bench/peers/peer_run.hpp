@@ -63,6 +63,9 @@ struct RunResult {
   /// boxsim damped on the scenes of the aims: its shared work, from a run of its own
   /// (PeerEngine::sharedWork).
   std::optional<SharedWork> sharedWork;
+  /// The same measured in a run of its own on two threads (the "+threads2" engine), to set
+  /// the model's loops beside what they took on this machine.
+  std::optional<SharedWork> sharedWorkTwoThreads;
 
   double meanMs() const;    ///< over every step of every repetition
   double medianMs() const;  ///< over every step of every repetition

@@ -161,7 +161,7 @@ class BoxsimEngine : public PeerEngine {
   }
   std::optional<SharedWork> sharedWork() const override {
     if (!measureShared_ || profile_.steps == 0) return std::nullopt;
-    return SharedWork{profile_.total(), profile_.parallelWork};
+    return SharedWork{profile_.total(), profile_.parallelWork, profile_.steps};
   }
 
  private:

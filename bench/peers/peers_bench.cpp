@@ -198,13 +198,18 @@ SceneResults runScene(const SceneSpec& spec, const std::vector<std::string>& eng
       setup.settings[engine->name()] = engine->settings();
       runRepetition(spec, *engine, setup.dt, results.runs[i]);
     }
-  // What boxsim damped's threads would share, in an untimed run of its own on one thread.
+  // What boxsim damped's threads would share, in an untimed run of its own on one thread, and
+  // what the same loops took in one on two threads.
   if (denseScene(spec))
     for (std::size_t i = 0; i < engines.size(); ++i)
       if (engines[i] == "damped" || engines[i] == "damped+friction") {
-        std::unique_ptr<PeerEngine> engine = makeEngine(engines[i] + "+shared_work");
-        runOnce(spec, engine.get(), setup.dt);
-        results.runs[i].sharedWork = engine->sharedWork();
+        const auto measured = [&](const std::string& suffix) {
+          std::unique_ptr<PeerEngine> engine = makeEngine(engines[i] + suffix + "+shared_work");
+          runOnce(spec, engine.get(), setup.dt);
+          return engine->sharedWork();
+        };
+        results.runs[i].sharedWork = measured("");
+        results.runs[i].sharedWorkTwoThreads = measured("+threads2");
       }
   // The largest clump's memory: each engine in a fresh process of its own, and the same
   // process stepping nothing for the part that is the scene and the program.
