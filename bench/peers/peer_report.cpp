@@ -334,7 +334,9 @@ std::string coresModel(const std::vector<SceneResults>& scenes) {
          "measured on this 2-core machine, where a second busy core slows the first (the impulse "
          "chapter, \"Threads\"); beside them, the shared loops and the rest of the step as they "
          "ran on 1 and on 2 threads, each in an untimed run of its own, show which part of the "
-         "model this machine does not give:\n\n" + out.str() + "\n";
+         "model this machine does not give (those runs read the clock around every loop, and "
+         "plan each pass' pairs with a fast body before their narrow phases, as several threads "
+         "do, so their steps on one thread are slower than the table's):\n\n" + out.str() + "\n";
 }
 
 /// \thesis{§6.1}: the frame rates the thesis reports (Fig. 6.6, the shot pyramid, 25 fps;
