@@ -313,8 +313,9 @@ std::string coresModel(const std::vector<SceneResults>& scenes) {
         out << "; in untimed runs of their own the shared loops took " << ms(loops(w), w.steps)
             << " ms a step on 1 thread and " << ms(loops(*t), t->steps) << " on 2 ("
             << fixed(loops(w) / std::max(loops(*t), 1e-12), 2) << "×, the model "
-            << fixed(shared / modelLoops, 2) << "×), the rest " << ms(w.stepSeconds - loops(w), w.steps)
-            << " and " << ms(t->stepSeconds - loops(*t), t->steps) << " ms";
+            << fixed(shared / modelLoops, 2) << "×), the rest "
+            << ms(w.stepSeconds - loops(w), w.steps) << " and "
+            << ms(t->stepSeconds - loops(*t), t->steps) << " ms";
       }
       out << "\n";
     }
