@@ -69,9 +69,16 @@ ContactNormalTracker::FaceRef ContactNormalTracker::faceOf(const World& world,
   return FaceRef{onB, axis, R.col(axis).dot(m.normal) < 0.0 ? -1.0 : 1.0};
 }
 
-void ContactNormalTracker::remember(const World& world, const ContactManifold& m) {
+void ContactNormalTracker::remember(const World& world, const ContactManifold& m,
+                                    FacePlaces* places) {
   if (model_ != ContactNormalModel::PreviousClosestFace || m.kind == AxisKind::EdgeEdge) return;
-  current_.at(m.a, m.b) = faceOf(world, m);
+  if (!places) {
+    current_.at(m.a, m.b) = faceOf(world, m);
+    return;
+  }
+  placesInStep(m, *places);
+  if (places->current < 0) places->current = static_cast<int>(current_.place(m.a, m.b));
+  current_.value(static_cast<std::size_t>(places->current)) = faceOf(world, m);
 }
 
 ImpulseContact ContactNormalTracker::baseContact(const World& world, const ContactManifold& m) {
@@ -110,20 +117,9 @@ ImpulseContact ContactNormalTracker::contactOf(const World& world, const Contact
       c.normal = signedDistanceNormal(world, m);
       break;
     case ContactNormalModel::PreviousClosestFace: {
-      // The pair's places, when kept, are found once in a step: previous_ does not change
-      // within one, and current_ only grows, so its places stay.
-      if (places && places->step != generation_) {
-        places->step = generation_;
-        places->current = -1;
-        places->previous = static_cast<int>(previous_.placeOf(m.a, m.b));
-      }
-      if (record && m.kind != AxisKind::EdgeEdge) {  // remember(world, m)
-        if (places && places->current < 0)
-          places->current = static_cast<int>(current_.place(m.a, m.b));
-        FaceRef& face = places ? current_.value(static_cast<std::size_t>(places->current))
-                               : current_.at(m.a, m.b);
-        face = faceOf(world, m);
-      }
+      if (record) remember(world, m, places);
+      // The pair's places, when kept, are found once in a step.
+      if (places) placesInStep(m, *places);
       const FaceRef* previous =
           !places ? previous_.find(m.a, m.b)
           : places->previous >= 0 ? &previous_.value(static_cast<std::size_t>(places->previous))

@@ -72,8 +72,9 @@ class ContactNormalTracker {
                            FacePlaces* places = nullptr);
   /// Remembers the face a touching pair's manifold was built on, for the next step
   /// (PreviousClosestFace; the other models remember nothing). Called once per pass a pair is
-  /// gathered in; a pair remembered twice in a step keeps the later face.
-  void remember(const World& world, const ContactManifold& m);
+  /// gathered in; a pair remembered twice in a step keeps the later face. `places` as for
+  /// contactOf.
+  void remember(const World& world, const ContactManifold& m, FacePlaces* places = nullptr);
 
   /// Ends a step: the faces recorded during it become "the previous step's" faces.
   void endStep();
@@ -94,6 +95,15 @@ class ContactNormalTracker {
   static ImpulseContact baseContact(const World& world, const ContactManifold& m);
   /// The face a face manifold was built on, signed so that it points from a to b.
   static FaceRef faceOf(const World& world, const ContactManifold& m);
+  /// `places` made the pair's (m.a, m.b) places in this step's tables, found afresh when they
+  /// were found in another step (previous_ does not change within a step, and current_ only
+  /// grows, so a place found in the step stays).
+  void placesInStep(const ContactManifold& m, FacePlaces& places) const {
+    if (places.step == generation_) return;
+    places.step = generation_;
+    places.current = -1;
+    places.previous = static_cast<int>(previous_.placeOf(m.a, m.b));
+  }
   /// Face f's normal where the bodies of m stand now.
   static Vec3 normalOf(const World& world, const ContactManifold& m, const FaceRef& f) {
     return f.sign * world.bodies[f.onB ? m.b : m.a].R.col(f.axis);
