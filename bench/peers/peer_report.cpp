@@ -183,7 +183,7 @@ std::string summary(const std::vector<SceneResults>& scenes) {
 const SceneResults* sceneOf(const std::vector<SceneResults>& scenes, const std::string& base,
                             double restitution) {
   for (const SceneResults& s : scenes)
-    if (s.spec.base == base && s.spec.restitution == restitution && s.spec.sleep) return &s;
+    if (!s.spec.userFile && s.spec.base == base && s.spec.restitution == restitution && s.spec.sleep) return &s;
   return nullptr;
 }
 
@@ -537,7 +537,11 @@ std::string markdownPage(const std::vector<SceneResults>& scenes, const RunSetup
       << "One process, one thread (boxsim's rows marked *2 threads* aside; Bullet and ODE step on "
       << "one thread as the harness calls them, btDiscreteDynamicsWorld and dWorldQuickStep with "
       << "no threading implementation), Δt = " << fixed(setup.dt, 6)
-      << " s, 1 kg unit cubes. Each scene runs "
+      << " s, "
+      << (std::any_of(scenes.begin(), scenes.end(), [](const SceneResults& s) { return s.spec.userFile; })
+              ? "the page's scenes of 1 kg unit cubes and the boxes of each scene file as it gives them"
+              : "1 kg unit cubes")
+      << ". Each scene runs "
       << setup.reps << " times under every engine, interleaved (engine A repetition 1, engine B "
       << "repetition 1, …). A step's time is the wall-clock time of the engine's step alone. "
       << "**Mean** ms/step is over every step of every repetition; median and 95th percentile "

@@ -4,11 +4,15 @@
 // and a page with no table of the tool's form is refused. The pages here are made up.
 #include <catch2/catch.hpp>
 
+#include <filesystem>
+#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "boxsim/io/scene.hpp"
 #include "peer_report.hpp"
+#include "peer_run.hpp"
 
 namespace {
 
@@ -84,4 +88,51 @@ TEST_CASE("The peers page compares nothing when no boxsim row is on both pages, 
   clump.spec.base = "clump1000";
   CHECK(baselineComparison({clump}, parseBaseline(kBaselineText, "page.md")).empty());
   CHECK_THROWS_AS(parseBaseline("# a page\n\nno table here\n", "page.md"), std::invalid_argument);
+}
+
+TEST_CASE("A scene file of the user's becomes a scene of the comparison: named by its stem, at "
+          "its restitution, frictionless for boxsim's plain rows, and a bad file is refused "
+          "before anything runs",
+          "[peers][scene-file]") {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path();
+  const std::filesystem::path good = dir / "boxsim_peers_scene_file_test.json";
+  {
+    std::ofstream out(good);
+    out << R"({"restitution": 0.4, "friction": 0.7, "ground": {},
+      "bodies": [{"half_extents": [0.5, 0.25, 0.5], "mass": 2, "position": [0, 0.25, 0]},
+                 {"half_extents": [0.2, 0.2, 0.2], "mass": 1, "position": [0, 3, -5],
+                  "velocity": [0, 0, 9], "launch_time": 1}]})";
+  }
+  const boxsim::peers::SceneSpec spec = boxsim::peers::sceneFromFile(good.string(), 2.5);
+  CHECK(spec.base == "boxsim_peers_scene_file_test");
+  CHECK(spec.userFile);
+  CHECK(spec.duration == 2.5);
+  CHECK(spec.restitution == 0.4);
+  CHECK(spec.launches);  // the second box waits for its launch: Bullet's CCD row too
+  const boxsim::World world = spec.build();
+  REQUIRE(world.bodies.size() == 3);  // the ground and the two boxes
+  for (const boxsim::RigidBody& body : world.bodies) {
+    CHECK(body.friction.muStatic == 0.0);
+    CHECK(body.friction.muDynamic == 0.0);
+  }
+  // The boxes as the file gives them (the crate's mass and extents), not unit cubes.
+  bool crate = false;
+  for (const boxsim::RigidBody& body : world.bodies)
+    crate = crate || (!body.immovable && body.invMass == 0.5 && body.halfExtents.y() == 0.25);
+  CHECK(crate);
+  std::filesystem::remove(good);
+
+  const std::filesystem::path bad = dir / "boxsim_peers_scene_file_bad.json";
+  {
+    std::ofstream out(bad);
+    out << R"({"bodies": [{"half_extents": [0.5, 0.5, 0.5], "mass": -1}]})";
+  }
+  try {
+    boxsim::peers::sceneFromFile(bad.string(), 1.0);
+    FAIL("a negative mass was accepted");
+  } catch (const boxsim::SceneError& e) {
+    CHECK(contains(e.what(), bad.string()));  // the file is named
+    CHECK(contains(e.what(), "mass"));        // and the place
+  }
+  std::filesystem::remove(bad);
 }

@@ -16,6 +16,7 @@
 #endif
 
 #include "boxsim/collision/broad_phase.hpp"
+#include "boxsim/io/scene.hpp"
 
 namespace boxsim::peers {
 
@@ -81,6 +82,25 @@ double RunResult::meanMs() const {
 }
 double RunResult::medianMs() const { return percentile(stepMs, 0.5); }
 double RunResult::p95Ms() const { return percentile(stepMs, 0.95); }
+
+SceneSpec sceneFromFile(const std::string& path, double seconds) {
+  const World world = loadScene(path).world;
+  SceneSpec spec;
+  const std::size_t slash = path.find_last_of('/');
+  spec.base = path.substr(slash == std::string::npos ? 0 : slash + 1);
+  if (const std::size_t dot = spec.base.rfind('.'); dot != std::string::npos && dot > 0)
+    spec.base.erase(dot);
+  spec.duration = seconds;
+  spec.restitution = world.restitution;
+  spec.launches = !world.launches.empty();
+  spec.userFile = true;
+  spec.build = [world] {
+    World frictionless = world;
+    for (RigidBody& body : frictionless.bodies) body.friction = {0.0, 0.0};
+    return frictionless;
+  };
+  return spec;
+}
 
 PeerScene peerSceneOf(const SceneSpec& spec) {
   World world = spec.build();

@@ -27,6 +27,7 @@ struct SceneSpec {
   bool tower = false;        ///< report the top box's drift
   bool die = false;          ///< report the die's horizontal travel
   bool launches = false;     ///< a box is launched (the shot pyramids): Bullet's CCD row too
+  bool userFile = false;     ///< read from a user's scene file (--scene-file), not the page's own
 
   /// "clump1000 e=0", with ", sleep off" when the engines do not sleep.
   std::string label() const;
@@ -75,6 +76,15 @@ struct RunResult {
 /// A box counts as at rest below these (a 1 kg unit cube: 5e-5 J of translation).
 constexpr double kRestSpeed = 0.01;  ///< m/s
 constexpr double kRestSpin = 0.02;   ///< rad/s
+
+/// A user's scene file (docs/scene_format.md) as a scene of the comparison, named by its file's
+/// stem, run for `seconds` (> 0) at the file's own restitution and sleeping on. Its bodies'
+/// friction is left out: as in the page's own scenes, boxsim's rows are frictionless (the
+/// thesis) unless an engine asks for '+friction', which, like the peers, gives every body the
+/// comparison's coefficient (SceneSpec::friction). The file is read now, so that a bad one
+/// fails before anything is timed: throws boxsim::SceneError naming the file, the place and the
+/// fix, as `boxsim run` reports it.
+SceneSpec sceneFromFile(const std::string& path, double seconds);
 
 /// The scene `spec` describes, as every engine loads it (its restitution, sleeping, friction).
 PeerScene peerSceneOf(const SceneSpec& spec);

@@ -106,13 +106,18 @@ std::vector<SceneSpec> comparisonScenes() {
   return scenes;
 }
 
-/// The scenes asked for: `bases` (all when empty), with the restitution and sleeping the
+/// The scenes asked for: `bases` (all when empty, unless `files` names scenes of the user's),
+/// then `files` (sceneFromFile, `fileSeconds` long), with the restitution and sleeping the
 /// command line imposes on every one; variants made equal by them are run once.
 std::vector<SceneSpec> chosenScenes(const std::vector<std::string>& bases,
                                     std::optional<double> restitution, std::optional<bool> sleep,
                                     double friction, double durationScale,
-                                    unsigned long perturbSeed = 0) {
+                                    unsigned long perturbSeed = 0,
+                                    const std::vector<std::string>& files = {},
+                                    double fileSeconds = 5.0) {
   std::vector<SceneSpec> all = comparisonScenes();
+  if (!files.empty() && bases.empty()) all.clear();
+  for (const std::string& file : files) all.push_back(sceneFromFile(file, fileSeconds));
   for (const std::string& base : bases)
     if (std::none_of(all.begin(), all.end(), [&](const SceneSpec& s) { return s.base == base; })) {
       std::string known;
@@ -122,8 +127,12 @@ std::vector<SceneSpec> chosenScenes(const std::vector<std::string>& bases,
                                   known.substr(0, known.size() - 2));
     }
   std::vector<SceneSpec> chosen;
-  for (SceneSpec spec : all) {
-    if (!bases.empty() && std::find(bases.begin(), bases.end(), spec.base) == bases.end()) continue;
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    SceneSpec spec = all[k];
+    // The files' scenes come last and are always run; the page's own as `bases` choose.
+    const bool fromFile = k + files.size() >= all.size();
+    if (!fromFile && !bases.empty() && std::find(bases.begin(), bases.end(), spec.base) == bases.end())
+      continue;
     if (restitution) spec.restitution = *restitution;
     if (sleep) spec.sleep = *sleep;
     spec.friction = friction;
@@ -168,7 +177,8 @@ std::vector<std::string> peersOf(const SceneSpec& spec) {
 /// Whether `spec` is one of the dense scenes, where boxsim damped runs on two threads too and
 /// its shared work is measured for the model of more cores.
 bool denseScene(const SceneSpec& spec) {
-  return spec.base == "pile343" || spec.base == "clump1000" || spec.base == "clump10000";
+  return !spec.userFile &&
+         (spec.base == "pile343" || spec.base == "clump1000" || spec.base == "clump10000");
 }
 
 /// The engines of one scene: those asked for, or by default boxsim damped integration
@@ -213,7 +223,7 @@ SceneResults runScene(const SceneSpec& spec, const std::vector<std::string>& eng
       }
   // The largest clump's memory: each engine in a fresh process of its own, and the same
   // process stepping nothing for the part that is the scene and the program.
-  if (spec.base == "clump10000") {
+  if (!spec.userFile && spec.base == "clump10000") {
     const auto memoryRun = [&](const std::string& engine) {
       return peakResidentOfRun({"--memory-run", engine, "--scene", spec.base,
                               "--restitution", shortestText(spec.restitution), "--sleep",
@@ -402,7 +412,16 @@ int main(int argc, char** argv) {
   std::optional<double> restitution;
   double friction = 0.5, durationScale = 1.0;
   RunSetup setup;
-  app.add_option("--scene", sceneNames, "Scene to run (repeatable; default: all)");
+  app.add_option("--scene", sceneNames, "Scene to run (repeatable; default: all, or none when --scene-file is given)");
+  std::vector<std::string> sceneFiles;
+  double fileSeconds = 5.0;
+  app.add_option("--scene-file", sceneFiles,
+                 "A scene file of your own (docs/scene_format.md; repeatable), run under every engine "
+                 "as the page's scenes are, at its own restitution; its bodies' friction is left out "
+                 "(boxsim's '+friction' engines and the peers take --friction)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--duration", fileSeconds, "Simulated time of every --scene-file scene, s")
+      ->check(CLI::Range(1e-3, 1e4));
   app.add_option("--engine", engineNames,
                  "Engine (repeatable): a boxsim method (damped, impulse, ...), optionally with a "
                  "contact gathering after a slash (damped/every_pass), and '+friction' for the "
@@ -524,7 +543,8 @@ int main(int argc, char** argv) {
     // target builds it first); edits made while the comparison runs are not in its numbers.
     const std::string stampText = stamp(BOXSIM_SOURCE_DIR);
     std::vector<SceneResults> results;
-    for (const SceneSpec& spec : chosenScenes(sceneNames, restitution, sleep, friction, durationScale, perturbSeed))
+    for (const SceneSpec& spec : chosenScenes(sceneNames, restitution, sleep, friction,
+                                              durationScale, perturbSeed, sceneFiles, fileSeconds))
       results.push_back(runScene(spec, enginesOf(spec, engineNames), setup));
     // The native section, measured by its own target, stays as it was.
     const std::string page = withNativeSection(markdownPage(results, setup, stampText),
