@@ -20,6 +20,7 @@
 #include "boxsim/core/newtonian_impulse.hpp"
 #include "boxsim/impulse_damped/damped_integration.hpp"
 #include "boxsim/impulse_damped/dampen_objects.hpp"
+#include "boxsim/impulse_damped/fix_contact_constraints.hpp"
 #include "boxsim/impulse_damped/friction_totals.hpp"
 #include "boxsim/impulse_damped/impulse_stepper.hpp"
 #include "boxsim/io/scene.hpp"
@@ -506,6 +507,40 @@ TEST_CASE("Friction is deterministic: the same frictional pile twice gives the s
   CHECK(run() == run());
 }
 
+TEST_CASE("FIXCONTACTCONSTRAINTS stops the approach of a frictional box it lifts out of more than two steps' fall, and leaves a resting box's step of fall and frictionless boxes as A.2 has them",
+          "[friction][impulse_damped]") {
+  // A unit cube `depth` m into the ground, falling at `speed` m/s and sliding at 1 m/s, with
+  // friction μ (0: frictionless), is fixed once; returns its velocity after.
+  const double gdt2 = 9.81 * kDt * kDt;  // the fall of one step from rest, 2.7 mm
+  const auto fixed = [](double depth, double speed, double mu, bool stop) {
+    World world = boxsim::testing::groundWorld();
+    world.bodies[0].friction = {mu, mu};
+    RigidBody box = RigidBody::box(Vec3::Constant(0.5), 1.0);
+    box.friction = {mu, mu};
+    box.s.x = Vec3(0.0, 0.5 - depth, 0.0);
+    box.updateDerived();
+    box.setVelocity(Vec3(1.0, -speed, 0.0));
+    world.add(box, "box");
+    FixContactParams params;
+    params.stopLiftedApproach = stop;
+    fixContactConstraints(world, 1e-3, params, kDt);
+    // Lifted to within the slop either way.
+    CHECK(world.bodies[1].s.x.y() >= 0.5 - params.slop * 0.5 - 1e-12);
+    return std::make_pair(world.bodies[1].v, world.bodies[1].omega);
+  };
+  // Driven 3 steps' fall deep at 2 m/s: it stops approaching the ground (the impulse at the
+  // contact's centroid under the centre: no turn), and keeps its slide (normal impulse only).
+  const auto [v, omega] = fixed(3.0 * gdt2, 2.0, 0.5, true);
+  CHECK(std::abs(v.y()) < 1e-12);
+  CHECK(v.x() == 1.0);
+  CHECK(omega.norm() < 1e-12);
+  // As written: the velocity that drove it in stays.
+  CHECK(fixed(3.0 * gdt2, 2.0, 0.5, false).first.y() == -2.0);
+  // Frictionless, and a resting box's own step of fall (a lift within 2 g Δt²): as written.
+  CHECK(fixed(3.0 * gdt2, 2.0, 0.0, true).first.y() == -2.0);
+  CHECK(fixed(gdt2, 9.81 * kDt, 0.5, true).first.y() == -9.81 * kDt);
+}
+
 TEST_CASE("A box at rest in a frictional heap does not report itself falling: shock propagation settles the columns the passes leave falling",
           "[friction][impulse_damped]") {
   // pile343.json with μ = 0.5. A box whose step moved it less than 1 mm is at rest, and its
@@ -513,18 +548,20 @@ TEST_CASE("A box at rest in a frictional heap does not report itself falling: sh
   // DAMPENOBJECTS may not zero it; 2 g Δt allows as much again): the contacts resolved the
   // rest. Without the sweep, leaning columns ended each step falling about g Δt faster per box
   // up the column (up to 1.2 m/s) while FIXCONTACTCONSTRAINTS lifted them back. Measured, the
-  // most such boxes at any of the instants looked at: 5 with the sweep, 31 without (1 with the
+  // most such boxes at any of the instants looked at: 5 with the sweep, 21 without (1 with the
   // sweep unbounded; its bounds, DampedIntegrationParams::shockSettledSpeed and
-  // shockRestingSpeed, leave some to the passes). Under a reduced workload (workload.hpp) the
+  // shockRestingSpeed, leave some to the passes), FIXCONTACTCONSTRAINTS' stop of a lifted
+  // body's approach off; with it on, 3 with the sweep and 9 without. Under a reduced workload (workload.hpp) the
   // instants looked at end at 2 s instead of 3 s (at the sanitizers' 0.1: 5 and 17).
   const int lastStep = 90 + static_cast<int>(std::max(30L, testing::scaledCount(90)));
-  const auto fallingAtRest = [lastStep](bool shock) {
+  const auto fallingAtRest = [lastStep](bool shock, bool stopLifted) {
     Scene scene = parseScene(R"({"restitution": 0, "friction": 0.5, "ground": {"half_size": 20},
         "builders": [{"type": "clump", "count": 343, "size": 1, "mass": 1, "spacing": 1.5,
                       "center": [0, 5.5, 0], "speed": 3, "spin": 6, "seed": 1}]})",
                              "pile343_mu.json");
     DampedIntegrationParams p;
     p.shockPropagation = shock;
+    p.fixContacts.stopLiftedApproach = stopLifted;
     DampedIntegrationStepper stepper(p);
     const double gdt = 9.81 * kDt;
     int worst = 0;
@@ -544,10 +581,18 @@ TEST_CASE("A box at rest in a frictional heap does not report itself falling: sh
     }
     return worst;
   };
-  const int with = fallingAtRest(true);
-  const int without = fallingAtRest(false);
-  CHECK(with <= 10);
-  CHECK(without > 3 * with);
+  const int sweep = fallingAtRest(true, false);
+  const int neither = fallingAtRest(false, false);
+  const int both = fallingAtRest(true, true);
+  const int stop = fallingAtRest(false, true);
+  CAPTURE(sweep, neither, both, stop);
+  CHECK(sweep <= 10);
+  CHECK(neither > 3 * sweep);
+  // FIXCONTACTCONSTRAINTS' stop of a lifted body's approach (FixContactParams::
+  // stopLiftedApproach) settles such columns too, after the fact: alone it leaves at most half
+  // of them falling, and with the sweep no more than the sweep alone.
+  CHECK(2 * stop <= neither);
+  CHECK(both <= sweep);
 }
 
 TEST_CASE("A frictional pyramid at rest ends its steps at rest: a box its friction holds keeps no spin the snap holds still, and one collision pass finds nothing to do",

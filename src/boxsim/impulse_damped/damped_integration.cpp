@@ -70,6 +70,7 @@ std::map<std::string, std::string> DampedIntegrationStepper::parameters() const 
       {"eps1_nudge_per_l", shortestText(params_.fixContacts.nudge)},
       {"slop_per_l", shortestText(params_.fixContacts.slop)},
       {"fix_side_share_deg", shortestText(params_.fixContacts.sideShareAngleDeg)},
+      {"fix_stop_lifted_approach", params_.fixContacts.stopLiftedApproach ? "on" : "off"},
       {"sleep", s.enabled ? "on" : "off"},
       {"sleep_time_s", shortestText(s.timeToSleep)},
       {"sleep_still_by", s.stillByPose ? "pose" : "pose_and_momenta"},

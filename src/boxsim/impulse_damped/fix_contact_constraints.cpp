@@ -9,6 +9,7 @@
 
 #include "boxsim/collision/broad_phase.hpp"
 #include "boxsim/collision/separating_axis.hpp"
+#include "boxsim/core/newtonian_impulse.hpp"
 
 namespace boxsim {
 
@@ -46,6 +47,25 @@ long nudgesBeforeTest(const DepthAfterTranslation& after, double step, double sl
       high = mid;
   }
   return high;
+}
+
+/// FixContactParams::stopLiftedApproach: the normal impulse on `lifted` alone (the lower body
+/// held) that stops the approach of the two bodies' material points at `point` (m) along
+/// `normal` (unit, pointing from the lower body to the lifted one), j = -v⁻ / (n · K n) with K
+/// the lifted body's inverse mass at the point, (1/m) 1 - [r]× I⁻¹ [r]×; nothing when the point
+/// does not approach. `arm` is the point's offset from the lifted body's centre where the
+/// contact was found (m).
+void stopApproach(RigidBody& lifted, const RigidBody& lower, const Vec3& point, const Vec3& arm,
+                  const Vec3& normal) {
+  const Vec3 u = (lifted.v + lifted.omega.cross(arm)) -
+                 (lower.v + lower.omega.cross(Vec3(point - lower.s.x)));
+  const double approach = normal.dot(u);
+  if (!(approach < 0.0)) return;
+  const double j = -approach / (lifted.invMass + rotationalInverseMass(lifted.Iinv, arm, normal));
+  const Vec3 impulse = j * normal;
+  lifted.s.P += impulse;
+  lifted.s.L += arm.cross(impulse);
+  lifted.updateVelocities();
 }
 }  // namespace
 
@@ -93,6 +113,7 @@ int fixContactConstraints(World& world, double margin, const FixContactParams& p
     const double step = params.nudge * ell;  // m, the length of one nudge (|offset| = 1)
     const auto limit =
         static_cast<long>(std::ceil(fixLiftLimit(moving, params, world.gravity, dt) / step));
+    const Vec3 from = moving.s.x;  // where the contact was found
     long n = 0;
     while (n < limit) {
       const Obb box = Obb::of(moving);
@@ -123,6 +144,14 @@ int fixContactConstraints(World& world, double margin, const FixContactParams& p
       }
       nudges += static_cast<int>(k);
       n += k;
+    }
+    // FixContactParams::stopLiftedApproach (DEVIATION there): a frictional body lifted out of
+    // more than two steps' fall stops approaching the body it was lifted from.
+    if (params.stopLiftedApproach && !share &&
+        static_cast<double>(n) * step > 2.0 * world.gravity.norm() * dt * dt &&
+        !combinedFriction(moving.friction, other.friction).frictionless()) {
+      const Vec3 point = c.centroid();
+      stopApproach(moving, other, point, Vec3(point - from), offset);
     }
   }
   return nudges;
