@@ -274,10 +274,11 @@ struct FixContactParams {
   /// wall a heavy box broke through (scenes/weak/wall_hit.json) buzzed: its upper rows ended
   /// every step falling at 0.4-0.9 m/s and were lifted back 10-20 mm, 135 of its 200 boxes
   /// moving in its last 2 s. On: the clump ends a few millimetres deep (docs/benchmarks.md),
-  /// the wall's last 2 s move 58 boxes. Stopping the tangential slip as well, within Coulomb's cone, or lifts
-  /// down to g Δt², held more boxes of the 343-cube pile awake (173 asleep at 8 s on average
-  /// over three nudged starts against 240; the normal stop alone: 212), and the tangential stop
-  /// took friction twice from a box sliding on the ground (it stopped 0.19 s early).
+  /// the wall's last 2 s move 58 boxes. Stopping the tangential slip as well, within Coulomb's
+  /// cone, or lifts down to g Δt², held more boxes of the 343-cube pile awake (173 asleep at
+  /// 8 s on average over three nudged starts against 240; the normal stop alone: 212), and the
+  /// tangential stop took friction twice from a box sliding on the ground (it stopped 0.19 s
+  /// early).
   bool stopLiftedApproach = true;
 };
 
