@@ -27,6 +27,7 @@ void refuseOptions(const std::string& method, const TechniqueOptions& options,
       {options.sleep.has_value(), "sleep"},
       {options.chatterDetection.has_value(), "chatter detection"},
       {options.dampSupportedOnly.has_value(), "damp supported only"},
+      {options.fixStopApproach.has_value(), "fix stop approach"},
       {options.continuousCollision.has_value(), "continuous collision"},
       {options.impactPasses.has_value(), "impact passes"},
       {options.plausibilitySeed.has_value(), "plausibility seed"},
@@ -92,6 +93,7 @@ std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueO
     if (options.sleep) params.sleep.enabled = *options.sleep;
     if (options.chatterDetection) params.sleep.chatterDetection = *options.chatterDetection;
     if (options.dampSupportedOnly) params.damping.supportedOnly = *options.dampSupportedOnly;
+    if (options.fixStopApproach) params.fixContacts.stopLiftedApproach = *options.fixStopApproach;
     if (options.continuousCollision) params.continuousCollision.enabled = *options.continuousCollision;
     if (options.impactPasses) params.impactPasses = *options.impactPasses;
     if (options.integrator) params.impulse.integrator = *options.integrator;

@@ -32,6 +32,7 @@ struct RunArgs {
   std::optional<bool> sleep;
   std::optional<bool> chatterDetection;
   std::optional<bool> dampSupportedOnly;
+  std::optional<bool> fixStopApproach;
   std::optional<bool> continuousCollision;
   std::optional<int> impactPasses;  // empty: the method's default (0)
   std::string broadPhase;     // empty: the scene's choice
@@ -94,6 +95,7 @@ TechniqueOptions techniqueOptions(const RunArgs& args) {
   options.sleep = args.sleep;
   options.chatterDetection = args.chatterDetection;
   options.dampSupportedOnly = args.dampSupportedOnly;
+  options.fixStopApproach = args.fixStopApproach;
   options.continuousCollision = args.continuousCollision;
   options.impactPasses = args.impactPasses;
   options.plausibilitySeed = args.plausibilitySeed;
@@ -204,6 +206,11 @@ void addRunCommand(CLI::App& app) {
                   "DAMPENOBJECTS damps only bodies whose contacts reach down to the ground or "
                   "another immovable body (damped): on, off (default: the thesis' rule, every "
                   "body in contact, which slows boxes touching in free fall)")
+      ->check(CLI::IsMember({"on", "off"}));
+  cmd->add_option("--fix-stop-approach", args->fixStopApproach,
+                  "FIXCONTACTCONSTRAINTS also stops the approach of a frictional body it lifts "
+                  "out of more than two steps' fall (damped): on, off (default: positions alone, "
+                  "as the thesis; on, frictional landings end shallower and heaps sleep later)")
       ->check(CLI::IsMember({"on", "off"}));
   cmd->add_option("--continuous-collision", args->continuousCollision,
                   "Continuous collision detection for fast bodies (damped): on, off (default)")
