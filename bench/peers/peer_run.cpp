@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 #include <numeric>
 #include <sstream>
@@ -86,10 +87,7 @@ double RunResult::p95Ms() const { return percentile(stepMs, 0.95); }
 SceneSpec sceneFromFile(const std::string& path, double seconds) {
   const World world = loadScene(path).world;
   SceneSpec spec;
-  const std::size_t slash = path.find_last_of('/');
-  spec.base = path.substr(slash == std::string::npos ? 0 : slash + 1);
-  if (const std::size_t dot = spec.base.rfind('.'); dot != std::string::npos && dot > 0)
-    spec.base.erase(dot);
+  spec.base = std::filesystem::path(path).stem().string();
   spec.duration = seconds;
   spec.restitution = world.restitution;
   spec.launches = !world.launches.empty();

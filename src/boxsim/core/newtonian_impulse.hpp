@@ -40,6 +40,17 @@ inline double pairInverseMass(const RigidBody& a, const RigidBody& b, const Vec3
          rotationalInverseMass(b.Iinv, rb, n);
 }
 
+/// A copy of `body` with zero inverse mass and inertia, marked immovable: in the impulses below
+/// it pushes and is not pushed (the lower levels of shock propagation, the lower body that
+/// FIXCONTACTCONSTRAINTS holds).
+inline RigidBody heldCopy(const RigidBody& body) {
+  RigidBody held = body;
+  held.invMass = 0.0;
+  held.Iinv.setZero();
+  held.immovable = true;
+  return held;
+}
+
 /// Applies the frictionless Newtonian impulse j n at world point p (m) along the unit normal n
 /// (pointing from a to b) when the bodies approach there, so that the relative normal velocity
 /// becomes -restitution times what it was (Witkin & Baraff eq. 8-18):

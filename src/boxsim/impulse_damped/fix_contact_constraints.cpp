@@ -48,25 +48,6 @@ long nudgesBeforeTest(const DepthAfterTranslation& after, double step, double sl
   }
   return high;
 }
-
-/// FixContactParams::stopLiftedApproach: the normal impulse on `lifted` alone (the lower body
-/// held) that stops the approach of the two bodies' material points at `point` (m) along
-/// `normal` (unit, pointing from the lower body to the lifted one), j = -v⁻ / (n · K n) with K
-/// the lifted body's inverse mass at the point, (1/m) 1 - [r]× I⁻¹ [r]×; nothing when the point
-/// does not approach. `arm` is the point's offset from the lifted body's centre where the
-/// contact was found (m).
-void stopApproach(RigidBody& lifted, const RigidBody& lower, const Vec3& point, const Vec3& arm,
-                  const Vec3& normal) {
-  const Vec3 u = (lifted.v + lifted.omega.cross(arm)) -
-                 (lower.v + lower.omega.cross(Vec3(point - lower.s.x)));
-  const double approach = normal.dot(u);
-  if (!(approach < 0.0)) return;
-  const double j = -approach / (lifted.invMass + rotationalInverseMass(lifted.Iinv, arm, normal));
-  const Vec3 impulse = j * normal;
-  lifted.s.P += impulse;
-  lifted.s.L += arm.cross(impulse);
-  lifted.updateVelocities();
-}
 }  // namespace
 
 int fixContactConstraints(World& world, double margin, const FixContactParams& params, double dt,
@@ -150,8 +131,10 @@ int fixContactConstraints(World& world, double margin, const FixContactParams& p
     if (params.stopLiftedApproach && !share &&
         static_cast<double>(n) * step > 2.0 * world.gravity.norm() * dt * dt &&
         !combinedFriction(moving.friction, other.friction).frictionless()) {
+      // The impulse of restitution 0 at the contact's centroid, the lower body held.
       const Vec3 point = c.centroid();
-      stopApproach(moving, other, point, Vec3(point - from), offset);
+      RigidBody held = heldCopy(other);
+      applyNewtonianImpulse(held, moving, Vec3(point - other.s.x), Vec3(point - from), offset, 0.0);
     }
   }
   return nudges;

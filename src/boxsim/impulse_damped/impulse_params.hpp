@@ -261,28 +261,17 @@ struct FixContactParams {
   /// pyramids and the die are unchanged bit for bit (their side contacts are within the slop).
   double sideShareAngleDeg = 45.0;
   /// Off by default. On: when FIXCONTACTCONSTRAINTS L6-L7 lift the upper body of a frictional
-  /// contact (the lower one held) by more than twice the distance gravity carries a body from
-  /// rest in a step (2 g Δt²), the lifted body also stops approaching: one normal impulse on it
-  /// alone, at the manifold's centroid, that makes the relative normal velocity of the two
-  /// material points there zero (the lower body held, as FIX holds it; nothing when they do not
-  /// approach). Frictionless contacts, shared side contacts, and lifts of up to 2 g Δt² (a
-  /// resting or sliding body's own step of fall) are fixed as written either way.
+  /// contact by more than twice the distance gravity carries a body from rest in a step
+  /// (2 g Δt²), the lifted body also gets the impulse of restitution 0 at the manifold's
+  /// centroid against the lower body held (as FIX holds it), so that it stops approaching.
+  /// Frictionless contacts, shared side contacts and lifts of up to 2 g Δt² (a resting or
+  /// sliding body's own step of fall) are fixed as written either way.
   /// DEVIATION(FIXCONTACTCONSTRAINTS L6-L7) when on: the pseudocode moves the body and leaves
-  /// its velocity, which still carries it into the contact, so a body the passes did not stop
-  /// sinks back in the next step and is lifted again. With μ = 0.5 the 1000-cube clump at e = 0
-  /// lands as one lump at 17 m/s and ends its 2 s 121 mm deep (mean 27.6 mm), and a brick wall
-  /// a heavy box broke through (scenes/weak/wall_hit.json) buzzes: its upper rows end every step
-  /// falling at 0.4-0.9 m/s and are lifted back 10-20 mm, 135 of its 200 boxes moving in its
-  /// last 2 s. On, the clump ended 3.1 mm deep (mean 11.2 mm), the clumps of 10 000 cubes a third
-  /// as deep as off, and the wall's last 2 s moved 58 boxes. Why off: the frictional clump of
-  /// Fig. 6.7 on the ground then slept whole later, from 2.9-11.5 s over eight nudged starts
-  /// (five later than Bullet's 7.1 s) against 2.3-3.3 s off, and the 343-cube pile had fewer
-  /// boxes asleep at 8 s (203 on average over ten starts, against 217 measured earlier). Stopping
-  /// the tangential slip as well, within Coulomb's cone, or lifts down to g Δt², held still more
-  /// boxes of the pile awake (173 over three starts, where the landed rule had 212 and off 240),
-  /// and the tangential stop took friction twice from a box sliding on the ground (it stopped
-  /// 0.19 s early); face contacts alone (3 or more points) still left two of the eight clumps
-  /// awake past 6 s.
+  /// its velocity, which carries it back in the next step. On, frictional landings and the broken
+  /// wall (scenes/weak/wall_hit.json) end far shallower and calmer, but frictional heaps fall
+  /// asleep later (the clump of Fig. 6.7 on the ground in five of eight nudged starts later
+  /// than Bullet); the impulse chapter ("Coulomb friction") has the measurements and the
+  /// variants tried.
   bool stopLiftedApproach = false;
 };
 

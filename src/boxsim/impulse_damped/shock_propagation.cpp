@@ -58,17 +58,6 @@ void ShockLevels::sort(const World& world, std::vector<ImpulseContact>& contacts
             [&](const ImpulseContact& l, const ImpulseContact& r) { return key(l) < key(r); });
 }
 
-namespace {
-/// A copy of `body` with zero inverse mass and inertia: it pushes and is not pushed.
-RigidBody heldCopy(const RigidBody& body) {
-  RigidBody fixed = body;
-  fixed.invMass = 0.0;
-  fixed.Iinv.setZero();
-  fixed.immovable = true;
-  return fixed;
-}
-}  // namespace
-
 int propagateShock(World& world, double dt, double margin, ContactGathering& gathering,
                    FrictionTotals* totals) {
   std::vector<ImpulseContact>& contacts =
