@@ -1189,3 +1189,38 @@ TEST_CASE("FIXCONTACTCONSTRAINTS frees a box squeezed between two side neighbour
   for (int step = 0; step < 20; ++step) fixContactConstraints(thesis, 0.0, upperOnly, kDt);
   CHECK(deepestSide(thesis) > 0.01);
 }
+
+TEST_CASE("FIXCONTACTCONSTRAINTS lifts the body the contact normal points up to, not the higher centre",
+          "[impulse_damped][invariant]") {
+  // A plank (4 m x 0.2 m x 1 m) tilted 20 degrees about z, high above the ground, and a 0.2 m
+  // cube lying on its upper face near the low end, 5 mm into it. The cube's centre is below the
+  // plank's, yet the plank holds it up: the normal from the plank to the cube points up
+  // (n_y = cos 20 degrees). A.2's "upper object" with its lower-to-upper normal is the cube;
+  // read by centre heights it would be the plank, pushed down and away from what rests on it.
+  const double tilt = 20.0 * kPi / 180.0, overlap = 0.005;
+  const Quat q(Eigen::AngleAxisd(tilt, Vec3::UnitZ()));
+  World world = boxsim::testing::groundWorld();
+  RigidBody plank = RigidBody::box(Vec3(2.0, 0.1, 0.5), 40.0);
+  plank.s.x = Vec3(0.0, 1.5, 0.0);
+  plank.s.q = q;
+  plank.updateDerived();
+  const int plankId = world.add(plank, "plank");
+  const Vec3 up = q * Vec3::UnitY();  // the plank's upper face normal
+  RigidBody cube = RigidBody::box(Vec3::Constant(0.1), 1.0);
+  cube.s.x = plank.s.x + q * Vec3(-1.8, 0.1, 0.0) + (0.1 - overlap) * up;
+  cube.s.q = q;
+  cube.updateDerived();
+  const int cubeId = world.add(cube, "cube");
+  REQUIRE(world.bodies[cubeId].s.x.y() < world.bodies[plankId].s.x.y());
+  const Vec3 plankFrom = world.bodies[plankId].s.x, cubeFrom = world.bodies[cubeId].s.x;
+  const FixContactParams params;
+  fixContactConstraints(world, 0.0, params, kDt);
+  // The plank stays bit for bit; the cube is lifted along the plank's normal out of it, to
+  // within the slop (ε1 ℓ nudges, ℓ = 0.1 m).
+  CHECK(world.bodies[plankId].s.x == plankFrom);
+  const Vec3 lift = world.bodies[cubeId].s.x - cubeFrom;
+  CHECK(lift.normalized().dot(up) > 1.0 - 1e-9);
+  CHECK(lift.norm() >= overlap - params.slop * 0.1);
+  CHECK(lift.norm() <= overlap + params.nudge * 0.1 * 1.01);
+  CHECK(lift.y() > 0.0);
+}

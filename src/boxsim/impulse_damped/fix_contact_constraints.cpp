@@ -22,6 +22,11 @@ double fixLiftLimit(const RigidBody& body, const FixContactParams& params, const
 }
 
 namespace {
+/// |n_y| at or below which a contact normal counts as level in FIXCONTACTCONSTRAINTS L3-L5
+/// (unitless, 1e-6 rad of tilt): far above the rounding of a unit normal (~1e-16), far below
+/// any slope a body could rest on.
+constexpr double kLevelNormal = 1e-6;
+
 /// How many nudges of `step` m the loop of FIXCONTACTCONSTRAINTS L6-L7 makes after a test
 /// before the next test that could stop it: one, then more while the test before each is
 /// certain to find the pair still deeper than `slop` (m), by the bound `after`
@@ -76,8 +81,15 @@ int fixContactConstraints(World& world, double margin, const FixContactParams& p
   for (const auto& entry : order) {  // FIXCONTACTCONSTRAINTS L2
     const ContactManifold& c = contacts[std::get<3>(entry)];
     // FIXCONTACTCONSTRAINTS L3-L5: the upper body moves, along the normal pointing from the lower
-    // one to it.
-    const bool aUpper = world.bodies[c.a].s.x.y() > world.bodies[c.b].s.x.y();
+    // one to it. The upper body is the one the contact normal points up to, so that the
+    // lower-to-upper normal points up; only a normal with no vertical part (within
+    // kLevelNormal) leaves it to the centres' heights. Boxes of different sizes make the two
+    // readings differ: a support whose centre is above that of a box resting on its slanted
+    // face would, read by centres, be pushed down into what holds it.
+    const double ny = c.normal.y();  // from a to b
+    const bool aUpper = std::abs(ny) > kLevelNormal
+                            ? ny < 0.0
+                            : world.bodies[c.a].s.x.y() > world.bodies[c.b].s.x.y();
     const int upper = aUpper ? c.a : c.b;
     const int lower = aUpper ? c.b : c.a;
     RigidBody& moving = world.bodies[upper];

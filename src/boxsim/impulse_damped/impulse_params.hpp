@@ -256,9 +256,10 @@ struct FixContactParams {
   /// movable. 0 moves the upper body alone everywhere, as \alg{FIXCONTACTCONSTRAINTS L3-L5} does.
   /// DEVIATION(FIXCONTACTCONSTRAINTS L3-L5): with the upper body alone, a box squeezed between two
   /// side neighbours is pushed out of one into the other and back, and sinks into one of them step
-  /// after step: the settling pile of 343 cubes at e = 0 ends 50 mm deep frictionless and 61-631 mm
-  /// with μ = 0.5; shared, 1.3 mm and 3.0-8.9 mm (impulse chapter, "The constants of A.2"). Towers,
-  /// pyramids and the die are unchanged bit for bit (their side contacts are within the slop).
+  /// after step: the settling pile of 343 cubes at e = 0 ends 61 mm deep frictionless, shared
+  /// 0.5 mm (the friction test "The settling pile of 343 cubes..."; with μ = 0.5 both end a few
+  /// mm deep). Towers, pyramids and the die are unchanged bit for bit (their side contacts are
+  /// within the slop).
   double sideShareAngleDeg = 45.0;
   /// Off by default. On: when FIXCONTACTCONSTRAINTS L6-L7 lift the upper body of a frictional
   /// contact by more than twice the distance gravity carries a body from rest in a step
