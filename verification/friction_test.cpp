@@ -636,6 +636,38 @@ TEST_CASE("A frictional pyramid at rest ends its steps at rest: a box its fricti
   CHECK(passes == 1 + DampedIntegrationParams{}.impulse.contactIterations);
 }
 
+TEST_CASE("A frictional slab turned hard enough to pass its edge falls under damped integration, and one turned too gently stands",
+          "[friction][impulse_damped][damping]") {
+  // A slab 1 m tall, 0.1 m thick and 0.5 m deep standing on the ground with μ = 0.5, given a
+  // turn ω about its depth axis (scenes/weak/domino_push.json's first slab). To topple it must
+  // lift its centre over its edge: by m g (sqrt(0.05² + 0.5²) − 0.5) = 0.0245 J. Its turn
+  // brings ½ I ω² (I = m (0.1² + 1²) / 12 about its centre): 0.095 J at 1.5 rad/s, four times
+  // that, and 0.011 J at 0.5 rad/s, less than half. The snap of DAMPENOBJECTS L23-L28 once
+  // measured the turn by the slab's thickness and held the first upright (its top moving 12 mm
+  // a step); measured by its height it lets it fall, as the plain impulse step does.
+  const auto tiltAfter = [](double omega, const std::string& method, double seconds) {
+    Scene scene = parseScene(R"({"restitution": 0.1, "friction": 0.5, "ground": {"height": 0},
+        "bodies": [{"half_extents": [0.05, 0.5, 0.25], "mass": 1, "position": [0, 0.5, 0]}]})",
+                             "slab.json");
+    RigidBody& slab = scene.world.bodies.back();
+    slab.setAngularVelocity(Vec3(0.0, 0.0, -omega));
+    std::unique_ptr<Stepper> stepper = makeStepper(method);
+    for (int k = 0; k < static_cast<int>(std::lround(seconds / kDt)); ++k)
+      stepper->step(scene.world, kDt);
+    const Vec3 up = slab.s.q * Vec3::UnitY();
+    return std::acos(std::clamp(up.y(), -1.0, 1.0)) * 180.0 / kPi;
+  };
+  const double m = 1.0, g = 9.81, barrier = m * g * (std::hypot(0.05, 0.5) - 0.5);
+  const double inertia = m * (0.1 * 0.1 + 1.0) / 12.0;
+  REQUIRE(0.5 * inertia * 1.5 * 1.5 > 3.0 * barrier);
+  REQUIRE(0.5 * inertia * 0.5 * 0.5 < 0.5 * barrier);
+  // Fallen flat (lying on a broad face) within a second, under both techniques.
+  CHECK(tiltAfter(1.5, "damped", 1.0) > 80.0);
+  CHECK(tiltAfter(1.5, "impulse", 1.0) > 80.0);
+  // Rocked back upright: within the 3° of DAMPENOBJECTS' alignment.
+  CHECK(tiltAfter(0.5, "damped", 3.0) < 3.0);
+}
+
 TEST_CASE("The settling pile of 343 cubes ends with its boxes overlapping by millimetres, with and without friction",
           "[friction][impulse_damped][chatter]") {
   // pile343.json (343 tumbling cubes at e = 0), 8 s. Sharing side contacts in

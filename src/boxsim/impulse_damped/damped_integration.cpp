@@ -65,7 +65,7 @@ std::map<std::string, std::string> DampedIntegrationStepper::parameters() const 
       {"eps9_g_dt_per_l", shortestText(d.spinZeroEps)},
       {"eps9_either_sign", d.spinZeroSymmetric ? "on" : "off"},
       {"eps10_g_dt2", shortestText(d.positionSnapEps)},
-      {"eps11_g_dt2_per_l", shortestText(d.rotationSnapEps)},
+      {"eps11_g_dt2_per_lmax", shortestText(d.rotationSnapEps)},
       {"damp_rest_held", d.restHeld ? "on" : "off"},
       {"eps1_nudge_per_l", shortestText(params_.fixContacts.nudge)},
       {"slop_per_l", shortestText(params_.fixContacts.slop)},

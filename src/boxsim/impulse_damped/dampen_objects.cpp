@@ -412,11 +412,17 @@ DampingStats dampenObjects(World& world, double dt, const std::vector<char>& tou
     if (!support.empty() && (support[i].slides || support[i].dragged ||
                              (!o.friction.frictionless() && !support[i].held)))
       continue;
-    const double ell = o.halfExtents.minCoeff();
+    // DEVIATION(DAMPENOBJECTS L26): the turn is measured by how far it carries the ends of the
+    // body's longest axis (its largest half extent), not its thickness ℓ: a slab 1 m tall and
+    // 0.1 m thick tipping at 1.4 rad/s turns by 0.011 in quaternion distance a step, within
+    // ε11 g Δt² / ℓ, and was held upright, though its top moved 12 mm a step; and the body the
+    // snap holds with friction loses its turn (restHeld). For a cube the two are the same length
+    // (DampingParams::rotationSnapEps).
+    const double reach = o.halfExtents.maxCoeff();
     const double deltaPosition = (o.s.x - old[i].x).norm();
     const double deltaRotation = quaternionDistance(o.s.q, old[i].q);
     if (deltaPosition < params.positionSnapEps * step2 &&
-        deltaRotation < params.rotationSnapEps * step2 / ell) {
+        deltaRotation < params.rotationSnapEps * step2 / reach) {
       // DEVIATION(DAMPENOBJECTS L26-L28): a body its friction holds (only frictional bodies
       // are ever held) and the rests left no linear momentum ends the step at rest
       // (DampingParams::restHeld); the velocities follow in restorePose.

@@ -216,7 +216,12 @@ struct DampingParams {
   /// ε10, in units of g Δt²: a body that would move less than this in the step stays where it
   /// was (\alg{DAMPENOBJECTS L26-L28}). 0.5 g Δt², half of what one step of gravity moves it.
   double positionSnapEps = 0.5;
-  /// ε11, unitless quaternion distance per (g Δt² / ℓ): the same for rotation.
+  /// ε11, unitless quaternion distance per (g Δt² / ℓmax), ℓmax the body's largest half extent:
+  /// the same for rotation, a turn that carries the ends of the body's longest axis about as far
+  /// as ε10 moves it (quaternion distance is about half the angle).
+  /// DEVIATION(DAMPENOBJECTS L26): ℓmax, not the ℓ of the other angular constants, so that a
+  /// tall thin body starting to topple is not held upright (dampen_objects.cpp); the same for a
+  /// cube.
   double rotationSnapEps = 0.5;
   /// DEVIATION(DAMPENOBJECTS L26-L28): the snap keeps a body's pose and leaves its velocities,
   /// which the next step's passes then work on. A body with Coulomb friction that its friction
@@ -294,7 +299,7 @@ struct SleepParams {
   /// What makes a step still for a body. true: the step left its pose bitwise unchanged,
   /// whatever momenta it keeps. A touched body's pose stays put only where DAMPENOBJECTS'
   /// snap (\alg{DAMPENOBJECTS L23-L28}) held it, which it does when the step would move it less
-  /// than ε10 g Δt² and turn it less than ε11 g Δt² / ℓ, over its support: the step's net
+  /// than ε10 g Δt² and turn it less than ε11 g Δt² / ℓmax, over its support: the step's net
   /// motion, not its momenta, is what is judged. In a heap the contact passes give a resting
   /// box the same small angular momentum step after step (the gravity trick at corners that
   /// are not level, about 0.05 rad/s in the clump on the ground), which damping cannot zero and
