@@ -35,10 +35,11 @@ using FixContactOrder = std::vector<std::tuple<double, int, int, std::size_t>>;
 
 /// Contacts gathered with `margin` (m) are sorted by the height of their point
 /// (\alg{FIXCONTACTCONSTRAINTS L1}); for each, the upper body (the one the contact normal points
-/// up to; by the higher centre when the normal is level; skipped when immovable) is nudged by ε1 ℓ along the lower-to-upper normal while the pair still overlaps by
-/// more than the slop (\alg{FIXCONTACTCONSTRAINTS L2-L7}), at most fixLiftLimit for a step of `dt`
-/// (s). ℓ is the upper body's smallest half extent. Sleeping bodies stand in as immovable while
-/// this runs, so they are never moved. `gathered`, when given, receives the contacts found before
+/// up to; by the higher centre when the normal is level; skipped when immovable) is nudged by
+/// ε1 ℓ along the lower-to-upper normal while the pair still overlaps by more than the slop
+/// (\alg{FIXCONTACTCONSTRAINTS L2-L7}), at most fixLiftLimit for a step of `dt` (s). ℓ is the
+/// upper body's smallest half extent. Sleeping bodies stand in as immovable while this runs, so
+/// they are never moved. `gathered`, when given, receives the contacts found before
 /// any nudge, in findContacts order: with no nudge made they are the contacts of the world as it is
 /// left, which saves the caller a narrow phase.
 /// \return the number of nudges made.
