@@ -271,15 +271,21 @@ void markFrictionHeld(const World& world, const Vec3& down, std::vector<SupportV
     }
     k = end;
   }
-  // A body on one that is not held is not held either: the stack under it may tip. As with
-  // slides, only a supported body passes it on (a body in flight has nothing to hold it).
+  // A body whose supports that hold it bear less than half its weight is not held either: the
+  // stack under it may tip. As with slides, only a supported body passes it on (a body in flight
+  // has nothing to hold it). A brick lying on two, one at the edge of a hole, is held by the
+  // other (the header).
+  std::vector<double>& heldBears = sums.heldBears;
   for (bool changed = true; changed;) {
     changed = false;
+    heldBears.assign(sums.fixedBears.begin(), sums.fixedBears.end());
+    for (const FrictionSlideLists::Carried& c : carried)
+      if (support[c.under].held || !(weight[static_cast<std::size_t>(c.under)] > 0.0))
+        heldBears[static_cast<std::size_t>(c.body)] += c.bears;
     for (const FrictionSlideLists::Carried& c : carried) {
-      if (!support[c.body].held || support[c.under].held ||
-          !(weight[static_cast<std::size_t>(c.under)] > 0.0))
-        continue;
-      support[c.body].held = false;
+      const std::size_t body = static_cast<std::size_t>(c.body);
+      if (!support[body].held || heldBears[body] >= 0.5 * weight[body]) continue;
+      support[body].held = false;
       changed = true;
     }
   }
@@ -312,6 +318,7 @@ void markFrictionSlides(const World& world, const std::vector<ContactManifold>& 
   mu.assign(n, 0.0);
   std::vector<Vec2>& patches = sums.patches;
   carried.clear();
+  sums.fixedBears.assign(n, 0.0);
   points.clear();
   patches.clear();
   for (std::size_t index = 0; index < contacts.size(); ++index) {
@@ -339,6 +346,7 @@ void markFrictionSlides(const World& world, const std::vector<ContactManifold>& 
           patches.emplace_back(m.points[k].position.x(), m.points[k].position.z());
       const std::size_t count = patches.size() - first;
       for (std::size_t k = first; k < patches.size(); ++k) points.emplace_back(i, patches[k]);
+      if (world.bodies[under].immovable) sums.fixedBears[static_cast<std::size_t>(i)] += bears;
       if (!world.bodies[i].immovable && !world.bodies[under].immovable) {
         carried.push_back({i, under, bears, first, count});
         // Its support slips under it faster than the rests reach: their friction drags it.
