@@ -50,10 +50,11 @@ struct SupportVerdict {
   /// Coulomb friction cannot hold the body where it lies (markFrictionSlides): DAMPENOBJECTS'
   /// rests (L6-L21) and its snap (L23-L28) leave it alone. Never set in a frictionless world.
   bool slides = false;
-  /// Coulomb friction holds the body with the load on it where it lies, and every body under it
-  /// is held (markFrictionSlides): only then do DAMPENOBJECTS' rests (L6-L21) and snap (L23-L28)
-  /// act on a frictional body, and its vertical rest (L7-L9) as on a box lying flat. Never set
-  /// in a frictionless world.
+  /// Coulomb friction holds the body with the load on it where it lies, and supports that hold
+  /// it bear at least half its weight (markFrictionSlides): only then do DAMPENOBJECTS' rests
+  /// (L6-L21) and snap (L23-L28) act on a frictional body, and then whether or not it is `over`
+  /// its support (held reads the centre of its whole load, `over` its own), and its vertical
+  /// rest (L7-L9) as on a box lying flat. Never set in a frictionless world.
   bool held = false;
   /// A movable body it rests on slips under it (markFrictionSlides' dragSpeed): its friction
   /// drags it along, so DAMPENOBJECTS' rests leave its horizontal velocity alone (L11-L15 for x

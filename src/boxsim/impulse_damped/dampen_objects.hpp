@@ -91,8 +91,9 @@ struct FrictionSlideLists {
 /// it) is shared among its movable supports in proportion to what each bears, -n · ĝ, and
 /// presses on each at the point of that contact's patch nearest to the load's centre (the centre itself for a body
 /// on one support: a stack passes the centre of its whole load down). DAMPENOBJECTS rests
-/// (L6-L21) and snaps (L23-L28) a frictional body only when it is held, and takes a small
-/// vertical velocity from a held body as from one lying flat (L7-L9).
+/// (L6-L21) and snaps (L23-L28) a frictional body only when it is held, then also when its own
+/// centre lies past its support (SupportVerdict::over) while its load's is over it, and takes a
+/// small vertical velocity from a held body as from one lying flat (L7-L9).
 /// Sets SupportVerdict::dragged for every movable body with Coulomb friction that a movable body
 /// it rests on, with friction between the two, slips under: at a point of their contact the
 /// support's surface moves along the contact plane faster than `dragSpeed` (m/s) relative to
