@@ -101,15 +101,14 @@ void dampMomenta(World& world, double dt, const std::vector<char>& touched,
     // the rests, which see one box over its support at a time, stopped every box's first turn
     // (on a plank tilted 20° with μ = 0.5, five cubes crept 0.75 m in 4 s before they toppled,
     // four crawled 0.44 m in 8 s and never did).
-    const bool heldIfFrictional = rates || support.empty() || support[i].held;
-    // A frictional body that its friction holds counts as over its support: `held` asks the same
-    // of the centre of its whole load, the bodies pressing on it included, where `over` asks it
-    // of its own centre. A box of a pyramid pushed out over the edge of the row under it, held
-    // down by the rows it carries, was held but not over, never rested, and kept trembling
-    // (0.1-0.2 mm a step for 12 s), and with it the 19 boxes above it awake.
-    const bool heldFrictional = !rates && !support.empty() && support[i].held;
+    // A frictional body's hold stands in for the support test: `held` asks of the centre of its
+    // whole load, the bodies pressing on it included, what `over` asks of its own centre. A box
+    // of a pyramid pushed out over the edge of the row under it, held down by the rows it
+    // carries, was held but not over, never rested, and kept trembling (0.1-0.2 mm a step for
+    // 12 s), and with it the 19 boxes above it awake.
+    const bool frictionalVerdict = !rates && !support.empty();
     const bool overSupport =
-        (!gated || support[i].over || heldFrictional) && !slides && heldIfFrictional;
+        !slides && (frictionalVerdict ? support[i].held : !gated || support[i].over);
     const bool yAxisAligned = isYAxisAligned(o, params.alignedAngleDeg) && overSupport;
     // DEVIATION(DAMPENOBJECTS L10): turning a box flat (towards y, about its centre) keeps it on
     // supporting faces that are level, but lifts it off a tilted one, or off all but the highest
@@ -134,8 +133,8 @@ void dampMomenta(World& world, double dt, const std::vector<char>& touched,
     // 19 mm in 8 s and never slept, seven crept 0.28 m in 8 s with the top one reported falling at
     // 0.4 m/s. Now they stand and sleep after 0.5 s; five on a 20° plank, whose load lies beyond
     // the lowest box's downhill edge, are not held.
-    // overSupport already requires SupportVerdict::held of a frictional body.
-    const bool held = overSupport && !rates && !support.empty();
+    // overSupport is SupportVerdict::held for a frictional body.
+    const bool held = overSupport && frictionalVerdict;
     if (yAxisAligned || held) {
       if (std::abs(o.s.P.y()) < params.verticalVelocityEps * pUnit) {
         o.s.P.y() = 0.0;
@@ -282,16 +281,18 @@ void markFrictionHeld(const World& world, const Vec3& down, std::vector<SupportV
   // stack under it may tip. As with slides, only a supported body passes it on (a body in flight
   // has nothing to hold it). A brick lying on two, one at the edge of a hole, is held by the
   // other (the header).
-  std::vector<double>& heldBears = sums.heldBears;
+  // What the supports that do not hold a body bear (movable, supported and not held): more than
+  // half its weight, and the rest (immovable supports, held ones, ones in flight) bear less.
+  std::vector<double>& unheldBears = sums.unheldBears;
   for (bool changed = true; changed;) {
     changed = false;
-    heldBears.assign(sums.fixedBears.begin(), sums.fixedBears.end());
+    unheldBears.assign(n, 0.0);
     for (const FrictionSlideLists::Carried& c : carried)
-      if (support[c.under].held || !(weight[static_cast<std::size_t>(c.under)] > 0.0))
-        heldBears[static_cast<std::size_t>(c.body)] += c.bears;
+      if (!support[c.under].held && weight[static_cast<std::size_t>(c.under)] > 0.0)
+        unheldBears[static_cast<std::size_t>(c.body)] += c.bears;
     for (const FrictionSlideLists::Carried& c : carried) {
       const std::size_t body = static_cast<std::size_t>(c.body);
-      if (!support[body].held || heldBears[body] >= 0.5 * weight[body]) continue;
+      if (!support[body].held || unheldBears[body] <= 0.5 * weight[body]) continue;
       support[body].held = false;
       changed = true;
     }
@@ -325,7 +326,6 @@ void markFrictionSlides(const World& world, const std::vector<ContactManifold>& 
   mu.assign(n, 0.0);
   std::vector<Vec2>& patches = sums.patches;
   carried.clear();
-  sums.fixedBears.assign(n, 0.0);
   points.clear();
   patches.clear();
   for (std::size_t index = 0; index < contacts.size(); ++index) {
@@ -353,7 +353,6 @@ void markFrictionSlides(const World& world, const std::vector<ContactManifold>& 
           patches.emplace_back(m.points[k].position.x(), m.points[k].position.z());
       const std::size_t count = patches.size() - first;
       for (std::size_t k = first; k < patches.size(); ++k) points.emplace_back(i, patches[k]);
-      if (world.bodies[under].immovable) sums.fixedBears[static_cast<std::size_t>(i)] += bears;
       if (!world.bodies[i].immovable && !world.bodies[under].immovable) {
         carried.push_back({i, under, bears, first, count});
         // Its support slips under it faster than the rests reach: their friction drags it.

@@ -57,11 +57,9 @@ struct FrictionSlideLists {
   std::vector<double> load;        ///< per body, kg: its mass and the shares pressing on it
   /// per body, kg m: those masses times where they press (its own at its centre of mass)
   std::vector<Vec3> moment;
-  /// per body: the part of `weight` its immovable supports bear (sleepers stand in as such)
-  std::vector<double> fixedBears;
-  /// per body, while SupportVerdict::held is passed up: the part of `weight` its supports that
-  /// hold it bear (immovable ones, held ones, and ones in flight)
-  std::vector<double> heldBears;
+  /// per body, while SupportVerdict::held is passed up: the part of `weight` that its movable,
+  /// supported supports that are not held bear
+  std::vector<double> unheldBears;
 };
 
 /// Sets SupportVerdict::slides, in `support` (one verdict per body; resized to the world's
