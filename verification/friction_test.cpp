@@ -20,6 +20,7 @@
 #include "boxsim/core/newtonian_impulse.hpp"
 #include "boxsim/impulse_damped/damped_integration.hpp"
 #include "boxsim/impulse_damped/dampen_objects.hpp"
+#include "boxsim/impulse_damped/friction_slides.hpp"
 #include "boxsim/impulse_damped/fix_contact_constraints.hpp"
 #include "boxsim/impulse_damped/friction_totals.hpp"
 #include "boxsim/impulse_damped/impulse_stepper.hpp"

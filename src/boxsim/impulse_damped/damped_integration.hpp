@@ -18,6 +18,7 @@
 #include "boxsim/impulse_damped/friction_totals.hpp"
 #include "boxsim/impulse_damped/continuous_collision.hpp"
 #include "boxsim/impulse_damped/dampen_objects.hpp"
+#include "boxsim/impulse_damped/friction_slides.hpp"
 #include "boxsim/impulse_damped/fix_contact_constraints.hpp"
 #include "boxsim/impulse_damped/impulse_params.hpp"
 #include "boxsim/impulse_damped/impulse_pass.hpp"
