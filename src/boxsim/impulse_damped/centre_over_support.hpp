@@ -60,6 +60,11 @@ struct SupportVerdict {
   /// drags it along, so DAMPENOBJECTS' rests leave its horizontal velocity alone (L11-L15 for x
   /// and z) and its snap (L23-L28) leaves its pose. Never set in a frictionless world.
   bool dragged = false;
+  /// The body is held (above) and its supports reach an immovable body through held bodies: it
+  /// rests on the ground, or on a held stack that does (markFrictionSlides), so it cannot move
+  /// down, and DAMPENOBJECTS takes any downward velocity from it (L7-L9). Never set in a
+  /// frictionless world.
+  bool grounded = false;
 };
 
 /// For each body of `world` (one verdict per body, in body order), whether its centre of mass

@@ -67,6 +67,7 @@ std::map<std::string, std::string> DampedIntegrationStepper::parameters() const 
       {"eps10_g_dt2", shortestText(d.positionSnapEps)},
       {"eps11_g_dt2_per_lmax", shortestText(d.rotationSnapEps)},
       {"damp_rest_held", d.restHeld ? "on" : "off"},
+      {"damp_rest_grounded", d.restGrounded ? "on" : "off"},
       {"eps1_nudge_per_l", shortestText(params_.fixContacts.nudge)},
       {"slop_per_l", shortestText(params_.fixContacts.slop)},
       {"fix_side_share_deg", shortestText(params_.fixContacts.sideShareAngleDeg)},

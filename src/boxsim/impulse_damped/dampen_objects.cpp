@@ -133,9 +133,14 @@ void dampMomenta(World& world, double dt, const std::vector<char>& touched,
     // 0.4 m/s. Now they stand and sleep after 0.5 s; five on a 20° plank, whose load lies beyond
     // the lowest box's downhill edge, are not held.
     // overSupport is SupportVerdict::held for a frictional body.
+    // DEVIATION(DAMPENOBJECTS L7-L9): a held body whose supports reach the ground through held
+    // bodies (SupportVerdict::grounded) cannot move down, and loses any downward velocity, not
+    // only a small one (DampingParams::restGrounded says why).
     const bool held = overSupport && frictionalVerdict;
+    const bool groundedFall =
+        params.restGrounded && held && support[i].grounded && o.s.P.y() < 0.0;
     if (yAxisAligned || held) {
-      if (std::abs(o.s.P.y()) < params.verticalVelocityEps * pUnit) {
+      if (std::abs(o.s.P.y()) < params.verticalVelocityEps * pUnit || groundedFall) {
         o.s.P.y() = 0.0;
         if (rates) o.s.L *= k3;
       }

@@ -133,6 +133,30 @@ void markFrictionHeld(const World& world, const Vec3& down, std::vector<SupportV
 }
 }  // namespace
 
+/// SupportVerdict::grounded (markFrictionSlides) from the verdicts' `held` and the carrying
+/// contacts `carried`, which markFrictionHeld left sorted from the top down; `down` is ĝ.
+void markGrounded(const World& world, const std::vector<ContactManifold>& contacts,
+                  const Vec3& down, std::vector<SupportVerdict>& support,
+                  const std::vector<FrictionSlideLists::Carried>& carried) {
+  // On an immovable body (the ground, a sleeping one standing in for it).
+  for (const ContactManifold& m : contacts) {
+    if (m.count == 0) continue;
+    for (const int i : {m.a, m.b}) {
+      const int under = i == m.b ? m.a : m.b;
+      const Vec3 into = i == m.b ? m.normal : Vec3(-m.normal);  // the normal runs from a to b
+      if (-into.dot(down) > 0.0 && world.bodies[under].immovable && !world.bodies[i].immovable &&
+          support[i].held)
+        support[i].grounded = true;
+    }
+  }
+  // On a lower grounded body, from the bottom up: a body's verdict is settled before any body
+  // above it reads it.
+  const auto height = [&](int i) { return -down.dot(world.bodies[i].s.x); };
+  for (auto c = carried.rbegin(); c != carried.rend(); ++c)
+    if (height(c->under) < height(c->body) && support[c->under].grounded && support[c->body].held)
+      support[c->body].grounded = true;
+}
+
 void markFrictionSlides(const World& world, const std::vector<ContactManifold>& contacts,
                         std::vector<SupportVerdict>& support, FrictionSlideLists* lists,
                         const SupportTestParams& params, double dragSpeed) {
@@ -227,6 +251,7 @@ void markFrictionSlides(const World& world, const std::vector<ContactManifold>& 
     }
   }
   markFrictionHeld(world, down, support, sums);
+  markGrounded(world, contacts, down, support, carried);
 }
 
 }  // namespace boxsim

@@ -94,6 +94,9 @@ struct FrictionSlideLists {
 /// out of its plane and fell from 6.5 s where Bullet's stands. Held by any one support that
 /// holds it, the clump on the ground (μ 0.5) kept 7 of its 100 cubes awake at 30 s on one of
 /// eight nudged starts; with half the weight all eight sleep whole.
+/// Sets SupportVerdict::grounded for every held body that a contact pushes up from an immovable
+/// body (the ground, a sleeping body), and, from the bottom up, for every held body that a
+/// contact pushes up from a lower grounded one.
 /// `lists`, when given, holds the per-body sums between calls.
 /// `params` name, as for SupportTest, when two boxes lie face to face: the support points of
 /// such a pair are the patch where their faces meet (levelContactPatch), whatever points the
