@@ -131,31 +131,22 @@ void markFrictionHeld(const World& world, const Vec3& down, std::vector<SupportV
     }
   }
 }
-}  // namespace
 
-/// SupportVerdict::grounded (markFrictionSlides) from the verdicts' `held` and the carrying
-/// contacts `carried`, which markFrictionHeld left sorted from the top down; `down` is ĝ.
-void markGrounded(const World& world, const std::vector<ContactManifold>& contacts,
-                  const Vec3& down, std::vector<SupportVerdict>& support,
-                  const std::vector<FrictionSlideLists::Carried>& carried) {
-  // On an immovable body (the ground, a sleeping one standing in for it).
-  for (const ContactManifold& m : contacts) {
-    if (m.count == 0) continue;
-    for (const int i : {m.a, m.b}) {
-      const int under = i == m.b ? m.a : m.b;
-      const Vec3 into = i == m.b ? m.normal : Vec3(-m.normal);  // the normal runs from a to b
-      if (-into.dot(down) > 0.0 && world.bodies[under].immovable && !world.bodies[i].immovable &&
-          support[i].held)
-        support[i].grounded = true;
-    }
-  }
+/// SupportVerdict::grounded (markFrictionSlides) from the verdicts' `held`, the bodies on an
+/// immovable one and the carrying contacts of `sums`, which markFrictionHeld left sorted from
+/// the top down; `down` is ĝ.
+void markGrounded(const World& world, const Vec3& down, std::vector<SupportVerdict>& support,
+                  const FrictionSlideLists& sums) {
+  const std::size_t n = world.bodies.size();
+  for (std::size_t i = 0; i < n; ++i) support[i].grounded = support[i].held && sums.onImmovable[i];
   // On a lower grounded body, from the bottom up: a body's verdict is settled before any body
   // above it reads it.
   const auto height = [&](int i) { return -down.dot(world.bodies[i].s.x); };
-  for (auto c = carried.rbegin(); c != carried.rend(); ++c)
+  for (auto c = sums.carried.rbegin(); c != sums.carried.rend(); ++c)
     if (height(c->under) < height(c->body) && support[c->under].grounded && support[c->body].held)
       support[c->body].grounded = true;
 }
+}  // namespace
 
 void markFrictionSlides(const World& world, const std::vector<ContactManifold>& contacts,
                         std::vector<SupportVerdict>& support, FrictionSlideLists* lists,
@@ -179,6 +170,7 @@ void markFrictionSlides(const World& world, const std::vector<ContactManifold>& 
   std::vector<FrictionSlideLists::Carried>& carried = sums.carried;
   std::vector<std::pair<int, Vec2>>& points = sums.points;
   pushed.assign(n, Vec3::Zero());
+  sums.onImmovable.assign(n, 0);
   weight.assign(n, 0.0);
   mu.assign(n, 0.0);
   std::vector<Vec2>& patches = sums.patches;
@@ -210,6 +202,7 @@ void markFrictionSlides(const World& world, const std::vector<ContactManifold>& 
           patches.emplace_back(m.points[k].position.x(), m.points[k].position.z());
       const std::size_t count = patches.size() - first;
       for (std::size_t k = first; k < patches.size(); ++k) points.emplace_back(i, patches[k]);
+      if (!world.bodies[i].immovable && world.bodies[under].immovable) sums.onImmovable[i] = 1;
       if (!world.bodies[i].immovable && !world.bodies[under].immovable) {
         carried.push_back({i, under, bears, first, count});
         // Its support slips under it faster than the rests reach: their friction drags it.
@@ -251,7 +244,7 @@ void markFrictionSlides(const World& world, const std::vector<ContactManifold>& 
     }
   }
   markFrictionHeld(world, down, support, sums);
-  markGrounded(world, contacts, down, support, carried);
+  markGrounded(world, down, support, sums);
 }
 
 }  // namespace boxsim

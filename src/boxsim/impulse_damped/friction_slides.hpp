@@ -31,6 +31,9 @@ struct FrictionSlideLists {
     std::size_t count;    ///< the patch's points
   };
   std::vector<Carried> carried;  ///< every such contact, in contact order
+  /// per body, 1 when a contact pushes it against gravity from an immovable body (the ground,
+  /// a sleeping body standing in for one)
+  std::vector<char> onImmovable;
   /// xz, m: the patch of each carrying contact (levelContactPatch, or the manifold's points).
   std::vector<Vec2> patches;
   /// (body, xz of the point, m): the points of every contact that pushes a body against gravity.
