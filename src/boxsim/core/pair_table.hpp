@@ -44,6 +44,9 @@ class PairTable {
     const Slot& slot = slots_[slotOf(keyOf(i, j))];
     return static_cast<long>(slot.index) - 1;
   }
+  /// Whether place `p` holds the value of (i, j): a caller that expects the pair there (one that
+  /// asks for the pairs in about the order it asked before) checks so without a lookup.
+  bool holds(std::size_t p, int i, int j) const { return p < keys_.size() && keys_[p] == keyOf(i, j); }
   /// The value at place `p` (place(), placeOf()).
   T& value(std::size_t p) { return values_[p]; }
   /// The value at place `p` (place(), placeOf()).

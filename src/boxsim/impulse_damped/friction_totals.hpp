@@ -3,6 +3,7 @@
 /// friction (applyPatchFriction in core/newtonian_impulse.hpp).
 #pragma once
 
+#include <cstddef>
 #include <utility>
 #include <vector>
 
@@ -19,11 +20,17 @@ namespace boxsim {
 /// it keeps its memory from step to step.
 class FrictionTotals {
  public:
-  /// The sums of the pair (a, b), created empty on first use.
-  FrictionSum& at(int a, int b) { return sums_.at(a, b); }
+  /// The sums of the pair (a, b), created empty on first use. Every pass asks for its contacts'
+  /// pairs in about the order the pass before did, and the sums stand in the order they were
+  /// first asked for: the place after the last one asked for is tried before the table's lookup.
+  FrictionSum& at(int a, int b) {
+    if (!sums_.holds(next_, a, b)) next_ = sums_.place(a, b);
+    return sums_.value(next_++);
+  }
   /// Forgets every pair, and the bodies' order by height: called as a step begins.
   void clear() {
     sums_.clear();
+    next_ = 0;
     ordered_ = false;
   }
 
@@ -50,6 +57,7 @@ class FrictionTotals {
 
  private:
   PairTable<FrictionSum> sums_;
+  std::size_t next_ = 0;  ///< the place after the one at() gave last
   /// A contact that carries a body: the body, the one under it, and how far its normal rises.
   struct Edge {
     int carried;  ///< body index

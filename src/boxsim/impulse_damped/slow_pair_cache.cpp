@@ -58,13 +58,15 @@ int SlowPairCache::add(const World& world, const StepBodies& bodies, int i, int 
   const Vec3& xb = bodyJ.s.x;
   // The normal model's choice now; its face is remembered only in the passes the pair touches.
   const ImpulseContact found = normals.contactOf(world, m, false);
-  pair.patch = found.patch;
   PairReach reach{i, j, m.count};
   PredictedPair& predicted = predicted_.emplace_back();
   predicted.normal = m.normal;
   predicted.contactNormal = found.normal;
   predicted.friction = found.friction;
   predicted.patchRadius = found.patch.radius;
+  predicted.patchCount = static_cast<std::int8_t>(found.patch.count);
+  for (int f = 0; f < found.patch.count; ++f)
+    predicted.patchOrder[f] = static_cast<std::int8_t>(found.patch.pointOf[f]);
   predicted.first = static_cast<int>(points_.size());
   for (int k = 0; k < m.count; ++k) {
     const ContactPoint& p = m.points[k];
@@ -143,10 +145,9 @@ bool SlowPairCache::predictedContact(const World& world, std::size_t k, const Pa
   if (!contact.friction.frictionless()) {
     // The friction patch is the kept points, about the new centroid, in the order around the
     // patch that the found contact gave them (a subset of a convex outline stays one).
-    const ContactPatch& found = pairs_[k].patch;
     contact.patch.count = 0;
-    for (int f = 0; f < found.count; ++f) {
-      const int i = found.pointOf[f];
+    for (int f = 0; f < pair.patchCount; ++f) {
+      const int i = pair.patchOrder[f];
       if (!keptPoint[i]) continue;
       contact.patch.offsets[contact.patch.count] = points[i].position - contact.point;
       contact.patch.pointOf[contact.patch.count++] = i;

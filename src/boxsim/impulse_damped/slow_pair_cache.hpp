@@ -12,6 +12,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "boxsim/collision/contact.hpp"
@@ -100,11 +101,16 @@ class SlowPairCache {
     double patchRadius;   ///< m, the found contact's patch radius
     int first;            ///< its first point in points_
     bool remembered = false;  ///< its face was handed to the normal model since it last was fast
+    /// With friction: how many of its points the found contact's patch holds (0 to 4) and which
+    /// (their indices among the pair's points), in the order around the patch; kept here rather
+    /// than with the patch itself, which no pass reads, so that predicting a frictional contact
+    /// reads no more cache lines than a frictionless one.
+    std::int8_t patchCount = 0;
+    std::array<std::int8_t, 4> patchOrder{};  ///< see patchCount
   };
-  /// One cached pair: what only friction and the normal model read of it.
+  /// One cached pair: what only the normal model and the narrow phase of a pair with no points
+  /// read of it.
   struct CachedPair {
-    /// The found contact's patch (with friction): the order of the points around it.
-    ContactPatch patch;
     /// The manifold at the current pose (its kind and normal name the face the normal model
     /// remembers).
     ContactManifold manifold;
