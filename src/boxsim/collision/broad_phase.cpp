@@ -99,6 +99,15 @@ void addContact(int i, int j, const ContactManifold& found, std::vector<ContactM
 }
 }  // namespace
 
+namespace {
+/// Room for at least `count` manifolds in `contacts`, grown at least twofold when it must grow:
+/// a list refilled every step for a heap that keeps gathering pairs would otherwise move to a
+/// new block (fresh pages from the system) at nearly every step.
+void reserveAtLeast(std::vector<ContactManifold>& contacts, std::size_t count) {
+  if (contacts.capacity() < count) contacts.reserve(std::max(count, 2 * contacts.capacity()));
+}
+}  // namespace
+
 std::vector<ContactManifold> findContacts(const World& world, double margin) {
   return findContacts(world, margin, candidatePairs(world, margin));
 }
@@ -117,7 +126,7 @@ void findContacts(const World& world, double margin, const std::vector<std::pair
   // nearly every candidate touches, and growing the vector step by step would copy each
   // manifold several times.
   contacts.clear();
-  contacts.reserve(pairs.size());
+  reserveAtLeast(contacts, pairs.size());
   narrowPhases(world, margin, pairs, nullptr, kept,
                [&contacts](int i, int j, const ContactManifold& found) {
                  addContact(i, j, found, contacts);
@@ -182,7 +191,7 @@ void refindContacts(const World& world, double margin, const std::vector<Contact
   if (moved.size() != world.bodies.size())
     throw std::invalid_argument("refindContacts: give one moved flag per body");
   contacts.clear();
-  contacts.reserve(before.size());
+  reserveAtLeast(contacts, before.size());
   std::size_t k = 0;
   // Both lists in increasing (a, b) order: merge the kept manifolds with the new ones.
   const auto keepBefore = [&](const std::pair<int, int>& until) {
