@@ -1,6 +1,7 @@
 #include "boxsim/core/newtonian_impulse.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <Eigen/Cholesky>
@@ -118,9 +119,46 @@ bool rowsCurrent(const FrictionRows& rows, const RigidBody& a, const RigidBody& 
          sameBits(rows.invMassA, a.invMass) && sameBits(rows.invMassB, b.invMass);
 }
 
+/// The inverse of a symmetric positive definite 5×5 matrix W (its lower triangle read) into
+/// `inverse`, by the Cholesky factor C of W = C Cᵀ: C⁻¹ = M by forward substitution and
+/// W⁻¹ = Mᵀ M. Loops of fixed length in a fixed order, so the same bits on every build; false,
+/// and `inverse` unset, when W is not positive definite (a pivot not > 0, or not a number).
+bool inverseOfPositiveDefinite(const FrictionRows::Mat5& W, FrictionRows::Mat5& inverse) {
+  FrictionRows::Mat5 C = FrictionRows::Mat5::Zero();
+  std::array<double, 5> reciprocal{};  // 1 / C(j, j)
+  for (int j = 0; j < 5; ++j) {
+    double pivot = W(j, j);
+    for (int k = 0; k < j; ++k) pivot -= C(j, k) * C(j, k);
+    if (!(pivot > 0.0)) return false;
+    C(j, j) = std::sqrt(pivot);
+    reciprocal[j] = 1.0 / C(j, j);
+    for (int i = j + 1; i < 5; ++i) {
+      double v = W(i, j);
+      for (int k = 0; k < j; ++k) v -= C(i, k) * C(j, k);
+      C(i, j) = v * reciprocal[j];
+    }
+  }
+  FrictionRows::Mat5 M = FrictionRows::Mat5::Zero();  // C⁻¹, lower triangular
+  for (int j = 0; j < 5; ++j) {
+    M(j, j) = reciprocal[j];
+    for (int i = j + 1; i < 5; ++i) {
+      double v = 0.0;
+      for (int k = j; k < i; ++k) v -= C(i, k) * M(k, j);
+      M(i, j) = v * reciprocal[i];
+    }
+  }
+  for (int i = 0; i < 5; ++i)
+    for (int j = i; j < 5; ++j) {
+      double v = 0.0;
+      for (int k = j; k < 5; ++k) v += M(k, i) * M(k, j);
+      inverse(i, j) = inverse(j, i) = v;
+    }
+  return true;
+}
+
 /// Builds the five friction rows of a contact (lever arms ra, rb in m, unit normal n from a to
 /// b; the spin row when `torsion`, the tipping rows when `tipping`) and the pair's inverse mass
-/// W in them, factorised, into `rows` with the inputs they came from.
+/// W in them and W⁻¹, into `rows` with the inputs they came from.
 void buildRows(FrictionRows& rows, const RigidBody& a, const RigidBody& b, const Vec3& ra,
                const Vec3& rb, const Vec3& n, bool torsion, bool tipping) {
   rows.ra = ra;
@@ -158,9 +196,7 @@ void buildRows(FrictionRows& rows, const RigidBody& a, const RigidBody& b, const
   for (int i = 2; i < 5; ++i)
     if (rows.Ga.col(i).isZero(0.0)) W(i, i) = 1.0;  // a row left out: its impulse stays 0
   // W is symmetric positive definite (a pair's inverse mass restricted to independent rows).
-  // Eigen's own in-place Cholesky, the routine Eigen::LLT::compute runs on its copy of W.
-  rows.L = W;
-  rows.factorised = Eigen::internal::llt_inplace<double, Eigen::Lower>::blocked(rows.L) == -1;
+  rows.factorised = inverseOfPositiveDefinite(W, rows.Winv);
   rows.normW = W.norm();
   rows.tippingFactorised = false;
 }
@@ -247,10 +283,7 @@ void applyPatchFriction(RigidBody& a, RigidBody& b, const Vec3& ra, const Vec3& 
       t2.dot(sum.couple);
   // Sticking: the sums that stop every row.
   if (!rows.factorised) return;
-  // W⁻¹ slip as Eigen::LLT::solve forms it: L y = slip, then Lᵀ x = y.
-  Vec5 stop = slip;
-  rows.L.triangularView<Eigen::Lower>().solveInPlace(stop);
-  rows.L.adjoint().triangularView<Eigen::Upper>().solveInPlace(stop);
+  const Vec5 stop = rows.Winv * slip;
   Vec5 total = before - stop;
   if (!total.allFinite()) return;
   // Coulomb: (J_t, τ / ρ) within μs N, else on the ellipse of μd N.

@@ -99,10 +99,10 @@ double applyNewtonianImpulse(RigidBody& a, RigidBody& b, const Vec3& ra, const V
                              const Vec3& n, double restitution, bool supportA, bool supportB);
 
 /// The five friction rows of a contact (applyPatchFriction) with the pair's inverse mass in
-/// them, factorised, and what they were computed from. Within a step a body's inverse inertia
+/// them and its inverse, and what they were computed from. Within a step a body's inverse inertia
 /// changes only with its mobility, and a cached contact keeps its lever arms from pass to pass,
 /// so the rows are rebuilt only when one of their inputs differs bitwise: the same bits as
-/// building them in every pass, without the 5×5 products and factorisation.
+/// building them in every pass, without the 5×5 products and the inversion.
 struct FrictionRows {
   using Mat35 = Eigen::Matrix<double, 3, 5>;  ///< a 3×5 matrix: the rows' angular Jacobians
   using Mat5 = Eigen::Matrix<double, 5, 5>;   ///< a 5×5 matrix: the rows' inverse mass
@@ -121,10 +121,12 @@ struct FrictionRows {
   Mat35 Ga = Mat35::Zero();          ///< angular Jacobian of the rows on a (columns: rows)
   Mat35 Gb = Mat35::Zero();          ///< angular Jacobian of the rows on b
   Mat5 W = Mat5::Zero();             ///< the pair's inverse mass in the rows
-  /// W factorised, W = L Lᵀ, L in the lower triangle (the upper one holds W's): the factor
-  /// Eigen::LLT computes, without its copy of W and the L1 norm only its rcond() reads.
-  Mat5 L = Mat5::Zero();
-  bool factorised = false;           ///< the factorisation succeeded (W positive definite)
+  /// W⁻¹, from W's Cholesky factor C (W = C Cᵀ) as C⁻ᵀ C⁻¹, each entry a fixed sequence of
+  /// plain operations (applyPatchFriction's sticking impulse is W⁻¹ times the slip: a product
+  /// in every pass where two triangular solves took twice the time, the rows being kept for
+  /// most passes of a step).
+  Mat5 Winv = Mat5::Zero();
+  bool factorised = false;           ///< W's Cholesky factor exists (W positive definite)
   double normW = 0.0;                ///< W.norm(), the scale of the energy guard
   /// The tipping rows' own block of W factorised (the couple that stops the tipping under
   /// sliding friction), formed on first use.
