@@ -40,6 +40,11 @@ using boxsim::testing::SeededRandom;
 namespace {
 
 constexpr double kDt = 1.0 / 60.0;
+
+/// A box of random half extents in [0.1, 2] m and mass in [0.1, 10] kg, at rest at the origin.
+RigidBody randomBox(SeededRandom& random) {
+  return RigidBody::box(Vec3(random.uniform(0.1, 2.0), random.uniform(0.1, 2.0), random.uniform(0.1, 2.0)), random.uniform(0.1, 10.0));
+}
 constexpr double kG = 9.81;
 constexpr double kMu = 0.5;
 
@@ -309,9 +314,9 @@ TEST_CASE("No friction or normal impulse raises the kinetic energy of a pair of 
   SeededRandom random(8721);
   int frictionApplied = 0;
   for (int trial = 0; trial < 20000; ++trial) {
-    RigidBody a = RigidBody::box(Vec3(random.uniform(0.1, 2.0), random.uniform(0.1, 2.0), random.uniform(0.1, 2.0)), random.uniform(0.1, 10.0));
+    RigidBody a = randomBox(random);
     RigidBody b = trial % 3 == 0 ? RigidBody::immovableBox(Vec3::Constant(1.0))
-                                 : RigidBody::box(Vec3(random.uniform(0.1, 2.0), random.uniform(0.1, 2.0), random.uniform(0.1, 2.0)), random.uniform(0.1, 10.0));
+                                 : randomBox(random);
     for (RigidBody* body : {&a, &b}) {
       body->s.q = random.rotation();
       body->updateDerived();
@@ -353,8 +358,8 @@ TEST_CASE("A sticking patch stops all five of its rows: sliding at the centroid,
   // 2.2e-16, relative to the slip; boxes of 0.1 to 2 m and 0.1 to 10 kg keep it below 1e6.
   SeededRandom random(5107);
   for (int trial = 0; trial < 2000; ++trial) {
-    RigidBody a = RigidBody::box(Vec3(random.uniform(0.1, 2.0), random.uniform(0.1, 2.0), random.uniform(0.1, 2.0)), random.uniform(0.1, 10.0));
-    RigidBody b = RigidBody::box(Vec3(random.uniform(0.1, 2.0), random.uniform(0.1, 2.0), random.uniform(0.1, 2.0)), random.uniform(0.1, 10.0));
+    RigidBody a = randomBox(random);
+    RigidBody b = randomBox(random);
     for (RigidBody* body : {&a, &b}) {
       body->s.q = random.rotation();
       body->updateDerived();
