@@ -86,6 +86,9 @@ struct Case {
   /// Cubes of a clump built in code (ClumpSpec's defaults, the clump of bench/peers, on its
   /// 150 m ground) instead of the scene file, when > 0.
   int clumpCount = 0;
+  /// Coulomb's μ (static and dynamic) on every body, the ground's too, or 0: the scene's own
+  /// friction (every scene of these cases is frictionless).
+  double friction = 0.0;
 };
 
 /// A world and a stepper advanced together to the start of the timed window. Copying both is
@@ -118,6 +121,8 @@ template <class StepperT>
 WarmState<StepperT> warmedUp(const Case& c, const StepperT& fresh) {
   WarmState<StepperT> warm{sceneOf(c), fresh};
   if (!std::isnan(c.restitution)) warm.world.restitution = c.restitution;
+  if (c.friction > 0.0)
+    for (boxsim::RigidBody& body : warm.world.bodies) body.friction = {c.friction, c.friction};
   const long steps = std::lround(c.warmUp / kDt);
   for (; warm.step < steps; ++warm.step) {
     warm.world.applyLaunches(launchClock(warm.step));
@@ -250,6 +255,10 @@ void registerAll() {
       {"pile343_settling", "pile343", 1.0, 60, 1, false, ""},
       {"pile343_settling_e09", "pile343", 1.0, 60, 1, false, "", 0.9},
       {"clump1000_e0_pile", "clump1000", 2.0, 60, 1, false, "", 0.0},
+      // The same two with Coulomb friction μ = 0.5 (bench/peers' μ rows): friction's share of
+      // the step, stage by stage, beside the frictionless cases.
+      {"pile343_settling_mu", "pile343", 1.0, 60, 1, false, "", std::nan(""), 0, 0.5},
+      {"clump1000_e0_pile_mu", "clump1000", 2.0, 60, 1, false, "", 0.0, 0, 0.5},
   };
   for (const Case& c : damped) {
     Case awake = c;
@@ -274,7 +283,8 @@ void registerAll() {
   // one-thread cases above; the same steps, bit for bit.
   std::vector<Case> twoThreads = large;
   for (const Case& c : damped)
-    if (c.name == "pile343_settling" || c.name == "clump1000_e0_pile") {
+    if (c.name == "pile343_settling" || c.name == "clump1000_e0_pile" ||
+        c.name == "clump1000_e0_pile_mu") {
       twoThreads.push_back(c);
       twoThreads.back().name += "_sleeping";
       twoThreads.back().aim.clear();
