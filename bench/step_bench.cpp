@@ -14,7 +14,8 @@
 /// and ms_contact the passes, ms_shock the friction's shock propagation sweep, ms_damp gravity
 /// and DAMPENOBJECTS, ms_fix FIXCONTACTCONSTRAINTS,
 /// ms_stable SETGEOMETRICALLYSTABLE, ms_sleep sleeping) and the separating-axis tests per step
-/// (sat; sat_pass those of the passes; axis_checks the one-axis checks that answered for a test,
+/// (sat; of those sat_pass the passes', sat_start the step's start's, sat_fix those of
+/// FIXCONTACTCONSTRAINTS with its contacts found again; axis_checks the one-axis checks that answered for a test,
 /// separatedBeyond, not among the tests). A label states the target the project set
 /// for that case.
 /// The `_cv` row is the spread between repetitions: above a few percent, something else was
@@ -202,6 +203,8 @@ struct TimedCase {
       perStep("ms_sleep", 1e3 * profile.sleeping);
       perStep("sat", static_cast<double>(profile.narrowPhases));
       perStep("sat_pass", static_cast<double>(profile.passNarrowPhases));
+      perStep("sat_start", static_cast<double>(profile.startNarrowPhases));
+      perStep("sat_fix", static_cast<double>(profile.fixNarrowPhases));
       perStep("axis_checks", static_cast<double>(profile.axisChecks));
     }
     if (!c.aim.empty()) state.SetLabel(c.aim);

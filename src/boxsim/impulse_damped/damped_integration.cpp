@@ -191,6 +191,7 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   // The contacts of the step's start, found before the first pass would find them.
   gathering_.beginStep(world, dt, GravityMode::VelocityPlusGravity, margin);
   clock.lap(&DampedStepProfile::stepContacts);
+  const long startTests = gathering_.kept().tests() + gathering_.passNarrowPhases() - testsBefore;
   // DAMPEDINTEGRATION L1: RESOLVECOLLISIONS.
   resolveCollisions(world, dt, margin, touched, totals, stats);
   clock.lap(&DampedStepProfile::collisionPasses);
@@ -247,7 +248,9 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   clock.lap(&DampedStepProfile::velocitiesAndDamping);
   // DAMPEDINTEGRATION L5: FIXCONTACTCONSTRAINTS, and the contacts after it.
   // Kept as the next step's starting contacts, where the support test reads them.
+  const long testsBeforeFix = gathering_.kept().tests();
   fixContacts(world, dt, margin);
+  const long fixTests = gathering_.kept().tests() - testsBeforeFix;
   const std::vector<ContactManifold>& contacts = lastContacts_;
   if (startingContacts) {
     lastPoses_.resize(n);
@@ -267,6 +270,8 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
     profile_->narrowPhases +=
         gathering_.kept().tests() + gathering_.passNarrowPhases() - testsBefore;
     profile_->passNarrowPhases += gathering_.passNarrowPhases() - passTestsBefore;
+    profile_->startNarrowPhases += startTests;
+    profile_->fixNarrowPhases += fixTests;
     profile_->axisChecks +=
         gathering_.passAxisChecks() + gathering_.kept().axisChecks() - axisChecksBefore;
     profile_->keptNarrowPhases += gathering_.kept().reuses() - reusesBefore;

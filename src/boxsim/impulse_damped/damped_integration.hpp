@@ -126,6 +126,11 @@ struct DampedStepProfile {
   long workSteps = 0;       ///< such steps
   long narrowPhases = 0;    ///< separating-axis tests run in them (KeptNarrowPhase's and the passes')
   long passNarrowPhases = 0;  ///< of those, the passes' tests of pairs with a fast body
+  /// Of those, the tests of the step's start (stepContacts: the slow pairs' narrow phase)
+  long startNarrowPhases = 0;
+  /// Of those, FIXCONTACTCONSTRAINTS' (fixContacts: its contacts, its tests before and after
+  /// each nudge, and the contacts found again after it)
+  long fixNarrowPhases = 0;
   /// One-axis checks that answered for a test (separatedBeyond), apart from the tests counted
   /// above: a pair apart along the axis of its last test, in the passes (OncePerStepGathering)
   /// and in the kept narrow phases (KeptNarrowPhase::axisChecks).
