@@ -71,8 +71,7 @@ int SlowPairCache::add(const World& world, const StepBodies& bodies, int i, int 
   for (int k = 0; k < m.count; ++k) {
     const ContactPoint& p = m.points[k];
     const Vec3 ra = p.position - xa, rb = p.position - xb;
-    points_.push_back(CachedPoint{p.position, p.depth, ra, rb, ra.cross(m.normal),
-                                  rb.cross(m.normal), m.normal.dot(ra), m.normal.dot(rb)});
+    points_.push_back(CachedPoint{p.position, p.depth, ra});
     reach.deepest = k == 0 ? p.depth : std::max(reach.deepest, p.depth);
     reach.leverA = std::max(reach.leverA, ra.norm());
     reach.leverB = std::max(reach.leverB, rb.norm());
@@ -112,20 +111,27 @@ bool SlowPairCache::predictedContact(const World& world, std::size_t k, const Pa
   const Vec3 ub = b.immovable ? b.v : Vec3(b.v + gravityStep);
   const Vec3& n = pair.normal;
   const double linear = n.dot(ua - ub);
-  // n · (ω × (ω × r)) = (n · ω)(ω · r) - |ω|² (n · r), with n · r cached per point.
+  // depth' = depth + n · (d_a - d_b) with d = Δt (u + ω × r) + ½ Δt² ω × (ω × r), where
+  // n · (ω × r) = r · (n × ω) and n · (ω × (ω × r)) = (n · ω)(ω · r) - |ω|² (n · r): linear in r.
+  // With r_b = r_a + e, e = x_a - x_b, the whole change is K + g · r_a, g and K the pair's:
+  //   g = Δt (n × ω_a - n × ω_b) + ½ Δt² ((n · ω_a) ω_a - |ω_a|² n - (n · ω_b) ω_b + |ω_b|² n),
+  //   K = Δt (n · (u_a - u_b) - e · (n × ω_b)) + ½ Δt² (|ω_b|² (n · e) - (n · ω_b)(ω_b · e)).
+  // One dot product a point instead of four.
   const double nwa = n.dot(a.omega), nwb = n.dot(b.omega);
   const double wa2 = a.omega.squaredNorm(), wb2 = b.omega.squaredNorm();
+  const double half = 0.5 * dt * dt;
+  const Vec3 nxwb = n.cross(b.omega);
+  const Vec3 e = a.s.x - b.s.x;
+  const Vec3 g = dt * (n.cross(a.omega) - nxwb) +
+                 half * (nwa * a.omega - wa2 * n - nwb * b.omega + wb2 * n);
+  const double K = dt * (linear - e.dot(nxwb)) + half * (wb2 * n.dot(e) - nwb * b.omega.dot(e));
   Vec3 sum = Vec3::Zero();
   int kept = 0;
   std::array<bool, 4> keptPoint{};
   double deepest = 0.0;
   for (int i = 0; i < reach.count; ++i) {
     const CachedPoint& p = points[i];
-    // n · (ω × r) = ω · (r × n).
-    const double turning = a.omega.dot(p.raCrossN) - b.omega.dot(p.rbCrossN);
-    const double centripetal = (nwa * a.omega.dot(p.ra) - wa2 * p.nDotRa) -
-                               (nwb * b.omega.dot(p.rb) - wb2 * p.nDotRb);
-    const double depth = p.depth + dt * (linear + turning) + (0.5 * dt * dt) * centripetal;
+    const double depth = p.depth + (K + g.dot(p.ra));
     if (depth <= -margin) continue;
     keptPoint[i] = true;
     deepest = kept == 0 ? depth : std::max(deepest, depth);

@@ -79,16 +79,12 @@ class SlowPairCache {
   void forgetFace(std::size_t k) { predicted_[k].remembered = false; }
 
  private:
-  /// One manifold point with the parts of its predicted depth that do not change in a step.
+  /// One manifold point as a pass reads it: its predicted depth is its depth plus a linear
+  /// function of r_a, the same for every point of the pair (predictedContact).
   struct CachedPoint {
     Vec3 position;     ///< m, world, at the current pose
     double depth;      ///< m, along the manifold normal at the current pose
     Vec3 ra;           ///< p - x_a, m
-    Vec3 rb;           ///< p - x_b, m
-    Vec3 raCrossN;     ///< r_a × n, m
-    Vec3 rbCrossN;     ///< r_b × n, m
-    double nDotRa;     ///< n · r_a, m
-    double nDotRb;     ///< n · r_b, m
   };
   /// What every pass reads of a cached pair to predict its contact besides its PairReach (its
   /// bodies and point count), kept apart from the rest (CachedPair) and its points kept one
