@@ -15,8 +15,8 @@
 /// and DAMPENOBJECTS, ms_fix FIXCONTACTCONSTRAINTS,
 /// ms_stable SETGEOMETRICALLYSTABLE, ms_sleep sleeping) and the separating-axis tests per step
 /// (sat; of those sat_pass the passes', sat_start the step's start's, sat_fix those of
-/// FIXCONTACTCONSTRAINTS with its contacts found again; axis_checks the one-axis checks that answered for a test,
-/// separatedBeyond, not among the tests). A label states the target the project set
+/// FIXCONTACTCONSTRAINTS with its contacts found again; axis_checks the one-axis checks that
+/// answered for a test, separatedBeyond, not among the tests). A label states the target the project set
 /// for that case.
 /// The `_cv` row is the spread between repetitions: above a few percent, something else was
 /// using the machine and the numbers are indicative only. "Library was built as DEBUG" is about

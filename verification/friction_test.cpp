@@ -40,13 +40,15 @@ using boxsim::testing::SeededRandom;
 namespace {
 
 constexpr double kDt = 1.0 / 60.0;
+constexpr double kG = 9.81;
+constexpr double kMu = 0.5;
 
 /// A box of random half extents in [0.1, 2] m and mass in [0.1, 10] kg, at rest at the origin.
 RigidBody randomBox(SeededRandom& random) {
-  return RigidBody::box(Vec3(random.uniform(0.1, 2.0), random.uniform(0.1, 2.0), random.uniform(0.1, 2.0)), random.uniform(0.1, 10.0));
+  const Vec3 halfExtents(random.uniform(0.1, 2.0), random.uniform(0.1, 2.0),
+                         random.uniform(0.1, 2.0));
+  return RigidBody::box(halfExtents, random.uniform(0.1, 10.0));
 }
-constexpr double kG = 9.81;
-constexpr double kMu = 0.5;
 
 /// The steppers that model friction, by name: the plain impulse step, and damped integration
 /// with its damping and sleeping off (both act as friction of their own, §5.2 and §4.5, and
