@@ -61,16 +61,23 @@ World randomScene(SeededRandom& random) {
 
 TEST_CASE("Once-per-step gathering finds every pair the exact prediction finds, pass after pass",
           "[impulse_damped][contact_gathering][reference]") {
-  SeededRandom random(20261121);
   // What the two may disagree on: a slow pair's depth by the Taylor remainder (below 1e-7 m
   // here). Pairs within that band of the margin may fall either way; every other pair must be
   // found by both, a fast body and its slow partner too (both are moved for their narrow phase).
+  // The same with the predicted anchor (ImpulseParams::predictedAnchor): there the fast bodies
+  // are cached where the first pass predicts them, and a pass whose prediction moved from there
+  // by g Δt² (the passes without gravity) or by a kick is predicted or gathered exactly.
   const double band = 1e-7;
+  for (const bool anchor : {false, true}) {
+  INFO("predicted anchor " << anchor);
+  SeededRandom random(20261121);
   int compared = 0;
   for (int scene = 0; scene < 40; ++scene) {
     World world = randomScene(random);
     ContactGathering exact(gatheringParams(ContactGatheringMode::EveryPass));
-    ContactGathering cached(gatheringParams(ContactGatheringMode::OncePerStep));
+    ImpulseParams cachedParams = gatheringParams(ContactGatheringMode::OncePerStep);
+    cachedParams.predictedAnchor = anchor;
+    ContactGathering cached(cachedParams);
     for (int pass = 0; pass < 4; ++pass) {
       const GravityMode predict = pass % 2 ? GravityMode::VelocityNoGravity
                                            : GravityMode::VelocityPlusGravity;
@@ -98,6 +105,7 @@ TEST_CASE("Once-per-step gathering finds every pair the exact prediction finds, 
   }
   INFO(compared << " pairs compared");
   CHECK(compared > 100);
+  }
 }
 
 TEST_CASE("For slow bodies the Taylor prediction matches the moved pose to its remainder",
@@ -246,4 +254,53 @@ TEST_CASE("Two fast boxes moving together are predicted like slow ones",
     else
       CHECK(cached.passNarrowPhases() > 0);
   }
+}
+
+TEST_CASE("With the predicted anchor a falling box is predicted from its first pass' pose",
+          "[impulse_damped][contact_gathering][reference]") {
+  // A cube falling at 3 m/s, turning at 2 rad/s, 4 cm above the ground (ImpulseParams::
+  // predictedAnchor): it moves 5 cm in a pass, so from where it stands it is fast and its pair
+  // with the ground gets the narrow phase at every pass' pose. Anchored where the first pass
+  // predicts it, the passes' predictions move from there only as the passes change its
+  // velocity: the contact is predicted from the cache, with no narrow phase in the passes, and
+  // agrees with the every-pass narrow phase as long as the change stays under the slow bar
+  // (exactReach ℓ = 1 cm): exactly while it is none (the first pass' own pose), to the Taylor
+  // remainder after a change of 0.3 m/s and 0.3 rad/s (Δt² |δω| (|ω| + |δω|) ρ, below 2e-4 m).
+  // A change of 3 m/s (sideways: it still lands) moves the prediction 5 cm from the anchor:
+  // the box is fast again and its pair gets the exact narrow phase.
+  World world = groundWorld();
+  RigidBody box = RigidBody::box(Vec3::Constant(0.5), 1.0);
+  box.s.x = Vec3(0.0, 0.54, 0.0);
+  box.s.q = Quat(Eigen::AngleAxisd(0.02, Vec3(1.0, 0.0, 0.3).normalized()));
+  box.updateDerived();
+  box.setVelocity(Vec3(0.5, -3.0, 0.2));
+  box.setAngularVelocity(Vec3(0.0, 2.0, 0.0));
+  world.bodies.push_back(box);
+  world.names.push_back("box");
+  ImpulseParams params = gatheringParams(ContactGatheringMode::OncePerStep);
+  params.predictedAnchor = true;
+  ContactGathering cached(params);
+  ContactGathering exact(gatheringParams(ContactGatheringMode::EveryPass));
+  const std::pair<int, int> pair(0, 1);
+  const auto compare = [&](double tolerance) {
+    const auto reference = gathered(world, exact, GravityMode::VelocityPlusGravity);
+    const auto found = gathered(world, cached, GravityMode::VelocityPlusGravity);
+    REQUIRE(reference.count(pair) == 1);
+    REQUIRE(found.count(pair) == 1);
+    CHECK(std::abs(found.at(pair) - reference.at(pair)) <= tolerance);
+  };
+  const auto kick = [&](const Vec3& dv, const Vec3& dw) {
+    RigidBody& b = world.bodies[1];
+    b.setVelocity(b.v + dv);
+    b.setAngularVelocity(b.omega + dw);
+  };
+  compare(1e-12);
+  compare(1e-12);
+  CHECK(cached.passNarrowPhases() == 0);
+  kick(Vec3(0.0, 0.3, 0.0), Vec3(0.3, 0.0, 0.0));
+  compare(2e-4);
+  CHECK(cached.passNarrowPhases() == 0);
+  kick(Vec3(3.0, 0.0, 0.0), Vec3::Zero());
+  compare(1e-12);
+  CHECK(cached.passNarrowPhases() > 0);
 }

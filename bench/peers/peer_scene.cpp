@@ -54,7 +54,8 @@ class BoxsimEngine : public PeerEngine {
   /// "damped+under_load"), in "+threads2": two threads (ImpulseParams::threads), in
   /// "+impact": 20 impact passes (DampedIntegrationParams::impactPasses, "damped+impact"), in
   /// "+supported": damping of supported bodies only (DampingParams::supportedOnly,
-  /// "damped+supported"), and
+  /// "damped+supported"), in "+anchor": the slow pairs found where the first pass predicts the
+  /// bodies fast at the step's start (ImpulseParams::predictedAnchor, "damped+anchor"), and
   /// in "+shared_work": the work its threads would share measured (sharedWork()); the suffixes
   /// in any order.
   explicit BoxsimEngine(std::string engine) {
@@ -68,7 +69,7 @@ class BoxsimEngine : public PeerEngine {
       const bool chatter = strip("+chatter"), friction = strip("+friction"),
                  underLoad = strip("+under_load"), threads = strip("+threads2"),
                  shared = strip("+shared_work"), impact = strip("+impact"),
-                 supported = strip("+supported");
+                 supported = strip("+supported"), anchor = strip("+anchor");
       if (chatter) options_.chatterDetection = true;
       if (friction) friction_ = true;
       if (underLoad) options_.geometricStability = GeometricStabilityMode::UnderLoad;
@@ -76,7 +77,9 @@ class BoxsimEngine : public PeerEngine {
       if (shared) measureShared_ = true;
       if (impact) options_.impactPasses = 20;
       if (supported) options_.dampSupportedOnly = true;
-      stripped = chatter || friction || underLoad || threads || shared || impact || supported;
+      if (anchor) options_.predictedAnchor = true;
+      stripped = chatter || friction || underLoad || threads || shared || impact || supported ||
+                 anchor;
     }
     const std::size_t slash = engine.find('/');
     method_ = engine.substr(0, slash);
@@ -92,6 +95,7 @@ class BoxsimEngine : public PeerEngine {
            (options_.geometricStability == GeometricStabilityMode::UnderLoad ? " under load" : "") +
            (options_.dampSupportedOnly.value_or(false) ? " supported" : "") +
            (options_.impactPasses.value_or(0) > 0 ? " impact" : "") +
+           (options_.predictedAnchor.value_or(false) ? " anchor" : "") +
            (options_.threads.value_or(1) > 1 ? " " + std::to_string(*options_.threads) + " threads"
                                              : "");
   }
@@ -102,7 +106,8 @@ class BoxsimEngine : public PeerEngine {
           (key == "chatter_detection" && value == "on") ||
           (key == "geometric_stability" && value == "under_load") ||
           (key == "threads" && value != "1") || (key == "impact_passes" && value != "0") ||
-          (key == "damp_supported_only" && value == "on"))
+          (key == "damp_supported_only" && value == "on") ||
+          (key == "predicted_anchor" && value == "on"))
         text += (text.empty() ? "" : ", ") + key + " " + value;
     return (text.empty() ? "defaults" : text) +
            (friction_ ? ", Coulomb friction as the peers (patch friction at each contact's centroid)"

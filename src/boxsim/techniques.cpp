@@ -24,6 +24,7 @@ void refuseOptions(const std::string& method, const TechniqueOptions& options,
       {!takesImpulseOptions && options.contactNormal.has_value(), "contact normal"},
       {!takesImpulseOptions && options.contactGathering.has_value(), "contact gathering"},
       {!takesImpulseOptions && options.threads.has_value(), "threads"},
+      {!takesImpulseOptions && options.predictedAnchor.has_value(), "predicted anchor"},
       {options.sleep.has_value(), "sleep"},
       {options.chatterDetection.has_value(), "chatter detection"},
       {options.dampSupportedOnly.has_value(), "damp supported only"},
@@ -81,6 +82,7 @@ std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueO
     if (options.contactNormal) params.impulse.normalModel = *options.contactNormal;
     if (options.contactGathering) params.impulse.gathering = *options.contactGathering;
     if (options.threads) params.impulse.threads = *options.threads;
+    if (options.predictedAnchor) params.impulse.predictedAnchor = *options.predictedAnchor;
     if (options.integrator) params.impulse.integrator = *options.integrator;
     return std::make_unique<ImpulseStepper>(params);
   }
@@ -89,6 +91,7 @@ std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueO
     if (options.contactNormal) params.impulse.normalModel = *options.contactNormal;
     if (options.contactGathering) params.impulse.gathering = *options.contactGathering;
     if (options.threads) params.impulse.threads = *options.threads;
+    if (options.predictedAnchor) params.impulse.predictedAnchor = *options.predictedAnchor;
     applyGeometricStability(options, params.useGeometricStability, params.geometricStability);
     if (options.sleep) params.sleep.enabled = *options.sleep;
     if (options.chatterDetection) params.sleep.chatterDetection = *options.chatterDetection;

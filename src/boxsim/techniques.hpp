@@ -42,6 +42,8 @@ struct TechniqueOptions {
   /// Continuous collision detection for fast bodies of damped integration
   /// (continuous_collision.hpp); empty: default (off).
   std::optional<bool> continuousCollision;
+  /// ImpulseParams::predictedAnchor of impulse and damped; empty: default (off).
+  std::optional<bool> predictedAnchor;
   /// Collision passes damped integration may add while a pass still stops an impact
   /// (DampedIntegrationParams::impactPasses, >= 0); empty: default (0, A.2 as written).
   std::optional<int> impactPasses;

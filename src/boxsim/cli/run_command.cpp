@@ -34,6 +34,7 @@ struct RunArgs {
   std::optional<bool> dampSupportedOnly;
   std::optional<bool> fixStopApproach;
   std::optional<bool> continuousCollision;
+  std::optional<bool> predictedAnchor;
   std::optional<int> impactPasses;  // empty: the method's default (0)
   std::string broadPhase;     // empty: the scene's choice
   std::optional<unsigned long> plausibilitySeed;
@@ -97,6 +98,7 @@ TechniqueOptions techniqueOptions(const RunArgs& args) {
   options.dampSupportedOnly = args.dampSupportedOnly;
   options.fixStopApproach = args.fixStopApproach;
   options.continuousCollision = args.continuousCollision;
+  options.predictedAnchor = args.predictedAnchor;
   options.impactPasses = args.impactPasses;
   options.plausibilitySeed = args.plausibilitySeed;
   options.threads = args.threads;
@@ -189,6 +191,12 @@ void addRunCommand(CLI::App& app) {
                   "(default, one narrow phase per step, first-order prediction), every_pass "
                   "(Alg. A.2 as written)")
       ->check(CLI::IsMember({"once_per_step", "every_pass"}));
+  cmd->add_option("--predicted-anchor", args->predictedAnchor,
+                  "Once-per-step gathering of impulse and damped: find the contacts of bodies "
+                  "fast at a step's start where its first pass predicts them, and predict the "
+                  "passes from there, so that a body whose velocity the passes barely change "
+                  "costs no narrow phase per pass: on, off (default, from the current poses)")
+      ->check(CLI::IsMember({"on", "off"}));
   cmd->add_option("--geometric-stability", args->geometricStability,
                   "Bodies that gravity and frictionless contact cannot move (analytic: left out "
                   "of the contact forces; damped: COLLIDE L11-L14): off, thesis (§5.4's rule), "

@@ -118,6 +118,17 @@ struct ImpulseParams {
   /// pair of slow bodies (contact_gathering.hpp, "Pairs moving together"). false: every pair
   /// with a fast body gets the exact narrow phase in every pass.
   bool pairReach = true;
+  /// OncePerStep: where the step's cache of slow pairs is found and its Taylor prediction
+  /// starts. false (the default): at the current poses, each pass predicting the whole
+  /// displacement Δt (v' + ω × r) to the pass' pose, and a body is fast when that exceeds
+  /// exactReach ℓ. true: at the poses the first pass predicts, x + Δt (v + g Δt) and q turned by
+  /// Δt ω with the step's starting velocities, each pass predicting only how far its own
+  /// prediction has moved from there, Δt (v' - v'_0) and Δt (ω - ω_0); a body is fast when that
+  /// exceeds exactReach ℓ. A falling or sliding body whose velocity the passes barely change is
+  /// then slow, and its pairs cost a Taylor prediction instead of an exact narrow phase per pass.
+  /// DEVIATION(RESOLVECOLLISIONS L2-L3, RESOLVECONTACTS L2-L3): as the slow pairs' prediction,
+  /// from another starting pose.
+  bool predictedAnchor = false;
   /// Speed only, the same bits either way (tested): the narrow phases of the step go through a
   /// KeptNarrowPhase (collision/kept_narrow_phase.hpp), which hands a pair's separating-axis
   /// test back while both boxes stand exactly where they stood when it ran. Not written into

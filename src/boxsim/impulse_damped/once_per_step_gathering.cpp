@@ -9,6 +9,7 @@
 #include "boxsim/collision/broad_phase.hpp"
 #include "boxsim/collision/contact_manifold.hpp"
 #include "boxsim/impulse_damped/parallel_for.hpp"
+#include "boxsim/impulse_damped/predicted_positions.hpp"
 
 namespace boxsim {
 
@@ -42,8 +43,20 @@ void OncePerStepGathering::beginStep(const World& world, const Vec3& gravityStep
 
 void OncePerStepGathering::buildCache(const World& world, const Vec3& gravityStep, double dt,
                                       double margin, ContactNormalTracker& normals) {
-  bodies_.build(world, gravityStep, dt, params_.exactReach);
+  const bool anchored = params_.predictedAnchor;
+  bodies_.build(world, gravityStep, dt, params_.exactReach, anchored);
   slowPairs_.clear();
+  // DEVIATION(RESOLVECOLLISIONS L2-L3, RESOLVECONTACTS L2-L3), with a predicted anchor: the slow
+  // pairs are found where the first pass predicts their bodies (ImpulseParams::predictedAnchor).
+  if (anchored) {
+    anchorWorld_.bodies = world.bodies;
+    anchorWorld_.gravity = world.gravity;
+    anchorWorld_.restitution = world.restitution;
+    anchorWorld_.groundIndex = world.groundIndex;
+    for (std::size_t i = 0; i < anchorWorld_.bodies.size(); ++i)
+      if (bodies_.anchorMoved[i]) movePredicted(anchorWorld_.bodies[i], dt, gravityStep);
+  }
+  const World& cacheWorld = anchored ? anchorWorld_ : world;
   // Wider than the passes need: their own test (boundsWithin with `margin`) picks from the
   // candidates, so a wider sweep finds the same contacts, and it makes the candidates hold the
   // pairs FIXCONTACTCONSTRAINTS looks at after the passes (stepPairs), whose margin
@@ -63,16 +76,16 @@ void OncePerStepGathering::buildCache(const World& world, const Vec3& gravitySte
     StepCandidates::Candidate& candidate = candidates[k];
     candidate.cached = -1;
     double pairMargin = 0.0;
-    if (!slowPairs_.wanted(world, bodies_, candidate.a, candidate.b, margin, params_.slowWidening,
+    if (!slowPairs_.wanted(cacheWorld, bodies_, candidate.a, candidate.b, margin, params_.slowWidening,
                            pairMargin))
       continue;
     batch.push_back({candidate.a, candidate.b, pairMargin});
     batchCandidates_.push_back(static_cast<int>(k));
   }
-  kept_.collideAll(world, [&](std::size_t r, const ContactManifold& m) {
+  kept_.collideAll(cacheWorld, [&](std::size_t r, const ContactManifold& m) {
     const KeptNarrowPhase::Request& request = batch[r];
     candidates[static_cast<std::size_t>(batchCandidates_[r])].cached =
-        slowPairs_.add(world, bodies_, request.i, request.j, request.margin, m, normals);
+        slowPairs_.add(cacheWorld, bodies_, request.i, request.j, request.margin, m, normals);
   });
   ++narrowPhases_;
   // Every predicted pose and every candidate's answer is from before this build.
@@ -98,7 +111,7 @@ void OncePerStepGathering::gather(World& world, const Vec3& gravityStep, double 
   sortBodies(world, gravityStep, dt);
   gatherFastPairs(world, gravityStep, dt, margin, normals);
   putBackAll(world);
-  mergeSlowPairs(world, gravityStep, dt, margin, normals, contacts);
+  mergeSlowPairs(world, dt, margin, normals, contacts);
 }
 
 void OncePerStepGathering::classify(const World& world, std::size_t i, const Vec3& gravityStep,
@@ -117,7 +130,12 @@ void OncePerStepGathering::classify(const World& world, std::size_t i, const Vec
     motion.stamp = stamps_.next();
   }
   passReach_[i] = motion.reach;
-  if (!bodies_.fast[i] && motion.reach <= bodies_.slowReach[i]) return;
+  // With a predicted anchor a body is fast when this pass' prediction moved away from its
+  // anchor by more than the slow bar: Δt (|v' - v'_0| + |ω - ω_0| ρ) (StepBodies::setPass).
+  const double moved = bodies_.anchored
+                           ? dt * bodies_.passVelocity[i].norm() + bodies_.passTurn[i]
+                           : motion.reach;
+  if (!bodies_.fast[i] && moved <= bodies_.slowReach[i]) return;
   fastThisPass_.push_back(static_cast<int>(i));
   const int index = static_cast<int>(i);
   if (motion.sweptStamp != candidates_.sweptStamp(index)) {
@@ -414,7 +432,7 @@ void OncePerStepGathering::putBackAll(World& world) {
     if (poses_.fastAtPredicted(i)) poses_.putBack(world, i);
 }
 
-void OncePerStepGathering::mergeSlowPairs(const World& world, const Vec3& gravityStep, double dt,
+void OncePerStepGathering::mergeSlowPairs(const World& world, double dt,
                                           double margin, ContactNormalTracker& normals,
                                           std::vector<ImpulseContact>& contacts) {
   // The contacts are written where they go, over the last pass' (the first `count` are this
@@ -442,7 +460,8 @@ void OncePerStepGathering::mergeSlowPairs(const World& world, const Vec3& gravit
       slowPairs_.forgetFace(k);
       continue;
     }
-    if (slowPairs_.passContact(world, bodies_, k, gravityStep, dt, margin, normals, kept_, next()))
+    if (slowPairs_.passContact(bodies_.anchored ? anchorWorld_ : world, bodies_, k, dt, margin,
+                               normals, kept_, next()))
       ++count;
   }
   contacts.resize(count);

@@ -211,8 +211,8 @@ class OncePerStepGathering {
   /// revertToOriginalPositions for the pass' partners and fast bodies, before COLLIDE.
   void putBackAll(World& world);
   /// The cached pairs' contacts of this pass merged with fastContacts_ in (a, b) order.
-  void mergeSlowPairs(const World& world, const Vec3& gravityStep, double dt, double margin,
-                      ContactNormalTracker& normals, std::vector<ImpulseContact>& contacts);
+  void mergeSlowPairs(const World& world, double dt, double margin, ContactNormalTracker& normals,
+                      std::vector<ImpulseContact>& contacts);
 
   ImpulseParams params_;
   StampCounter stamps_;
@@ -224,6 +224,9 @@ class OncePerStepGathering {
   bool cached_ = false;
   double cacheMargin_ = 0.0;  ///< m, the margin the cache was built for
   StepBodies bodies_;
+  /// With a predicted anchor (ImpulseParams::predictedAnchor): the bodies at their anchors,
+  /// where the slow pairs are found and predicted from (StepBodies::anchorShift).
+  World anchorWorld_;
   StepCandidates candidates_;
   SlowPairCache slowPairs_;
   PassPoses poses_;

@@ -26,12 +26,23 @@ bool SlowPairCache::wanted(const World& world, const StepBodies& bodies, int i, 
   if ((bodies.fast[i] || bodies.fast[j]) && !together) return false;
   const RigidBody& bodyI = world.bodies[i];
   const RigidBody& bodyJ = world.bodies[j];
-  const double wideningI = bodyI.immovable ? 0.0 : slowWidening * bodyI.halfExtents.minCoeff();
-  const double wideningJ = bodyJ.immovable ? 0.0 : slowWidening * bodyJ.halfExtents.minCoeff();
+  // A body anchored at its predicted pose is fast again once a pass' prediction leaves it by
+  // its slow bar: widened by that bar, the pair holds every point that can come within the
+  // margin while both stay slow.
+  const auto widening = [&](int k, const RigidBody& body) {
+    if (body.immovable) return 0.0;
+    if (bodies.anchored && bodies.anchorMoved[k]) return bodies.slowReach[k];
+    return slowWidening * body.halfExtents.minCoeff();
+  };
+  const double wideningI = widening(i, bodyI);
+  const double wideningJ = widening(j, bodyJ);
   // The bounds obbBounds gives, from the reach the step's bodies keep.
   Vec3 loI, hiI, loJ, hiJ;
-  boundsAbout(bodyI.s.x, bodies.reach[i], wideningI, loI, hiI);
-  boundsAbout(bodyJ.s.x, bodies.reach[j], wideningJ, loJ, hiJ);
+  // With a predicted anchor `world` stands at it, and the half widths, taken at the current
+  // orientations, are widened by how far the anchor's turn moves a point (anchorSlack, 0
+  // without).
+  boundsAbout(bodyI.s.x, bodies.reach[i], wideningI + bodies.anchorSlack[i], loI, hiI);
+  boundsAbout(bodyJ.s.x, bodies.reach[j], wideningJ + bodies.anchorSlack[j], loJ, hiJ);
   if (!boundsWithin(loI, hiI, loJ, hiJ, margin)) return false;
   pairMargin = margin + wideningI + wideningJ;
   return true;
@@ -100,15 +111,19 @@ bool SlowPairCache::mayTouch(const StepBodies& bodies, const PairReach& reach, d
          linear * linear;
 }
 
-bool SlowPairCache::predictedContact(const World& world, std::size_t k, const PairReach& reach,
-                                     const Vec3& gravityStep, double dt, double margin,
+bool SlowPairCache::predictedContact(const World& world, const StepBodies& bodies, std::size_t k,
+                                     const PairReach& reach, double dt, double margin,
                                      ImpulseContact& contact) const {
   const PredictedPair& pair = predicted_[k];
   const CachedPoint* points = points_.data() + pair.first;
   const RigidBody& a = world.bodies[reach.a];
   const RigidBody& b = world.bodies[reach.b];
-  const Vec3 ua = a.immovable ? a.v : Vec3(a.v + gravityStep);
-  const Vec3 ub = b.immovable ? b.v : Vec3(b.v + gravityStep);
+  // The pass' v' and ω (StepBodies::setPass; less the anchor's with a predicted anchor, where
+  // `world` then stands).
+  const Vec3& ua = bodies.passVelocity[reach.a];
+  const Vec3& ub = bodies.passVelocity[reach.b];
+  const Vec3& wa = bodies.passOmega[reach.a];
+  const Vec3& wb = bodies.passOmega[reach.b];
   const Vec3& n = pair.normal;
   const double linear = n.dot(ua - ub);
   // depth' = depth + n · (d_a - d_b) with d = Δt (u + ω × r) + ½ Δt² ω × (ω × r), where
@@ -117,14 +132,14 @@ bool SlowPairCache::predictedContact(const World& world, std::size_t k, const Pa
   //   g = Δt (n × ω_a - n × ω_b) + ½ Δt² ((n · ω_a) ω_a - |ω_a|² n - (n · ω_b) ω_b + |ω_b|² n),
   //   K = Δt (n · (u_a - u_b) - e · (n × ω_b)) + ½ Δt² (|ω_b|² (n · e) - (n · ω_b)(ω_b · e)).
   // One dot product a point instead of four.
-  const double nwa = n.dot(a.omega), nwb = n.dot(b.omega);
-  const double wa2 = a.omega.squaredNorm(), wb2 = b.omega.squaredNorm();
+  const double nwa = n.dot(wa), nwb = n.dot(wb);
+  const double wa2 = wa.squaredNorm(), wb2 = wb.squaredNorm();
   const double half = 0.5 * dt * dt;
-  const Vec3 nxwb = n.cross(b.omega);
+  const Vec3 nxwb = n.cross(wb);
   const Vec3 e = a.s.x - b.s.x;
-  const Vec3 g = dt * (n.cross(a.omega) - nxwb) +
-                 half * (nwa * a.omega - wa2 * n - nwb * b.omega + wb2 * n);
-  const double K = dt * (linear - e.dot(nxwb)) + half * (wb2 * n.dot(e) - nwb * b.omega.dot(e));
+  const Vec3 g = dt * (n.cross(wa) - nxwb) +
+                 half * (nwa * wa - wa2 * n - nwb * wb + wb2 * n);
+  const double K = dt * (linear - e.dot(nxwb)) + half * (wb2 * n.dot(e) - nwb * wb.dot(e));
   Vec3 sum = Vec3::Zero();
   int kept = 0;
   std::array<bool, 4> keptPoint{};

@@ -69,10 +69,11 @@ class SlowPairCache {
   }
   /// Cached pair k's contact in this pass, from its predicted points or, with none to predict
   /// from, from the narrow phase where its slow bodies stand (the same in every pass of the
-  /// step); false when none is within `margin` (m). Remembers its face in the normal model
+  /// step); false when none is within `margin` (m). With a predicted anchor
+  /// (StepBodies::anchored) `world` is the bodies at their anchors (the cache's poses). Remembers its face in the normal model
   /// once while the pair stays slow. A narrow phase runs through `kept`.
-  bool passContact(const World& world, const StepBodies& bodies, std::size_t k,
-                   const Vec3& gravityStep, double dt, double margin,
+  bool passContact(const World& world, const StepBodies& bodies, std::size_t k, double dt,
+                   double margin,
                    ContactNormalTracker& normals, KeptNarrowPhase& kept, ImpulseContact& contact);
   /// Cached pair k is gathered as written in this pass (one of its bodies turned fast): what
   /// it remembered of its face comes after anything remembered before.
@@ -122,8 +123,8 @@ class SlowPairCache {
   static bool mayTouch(const StepBodies& bodies, const PairReach& reach, double margin);
   /// The Taylor-predicted contact of cached pair k (`reach`, its PredictedPair and points);
   /// false when no point is within `margin` (m).
-  bool predictedContact(const World& world, std::size_t k, const PairReach& reach,
-                        const Vec3& gravityStep, double dt, double margin,
+  bool predictedContact(const World& world, const StepBodies& bodies, std::size_t k,
+                        const PairReach& reach, double dt, double margin,
                         ImpulseContact& contact) const;
 
   bool pairReach_;
@@ -138,7 +139,7 @@ class SlowPairCache {
 // cached pair: for a pair found apart at once (mayTouch) the call cost more than the answer.
 [[gnu::always_inline]] inline
 bool SlowPairCache::passContact(const World& world, const StepBodies& bodies, std::size_t k,
-                                const Vec3& gravityStep, double dt, double margin,
+                                double dt, double margin,
                                 ContactNormalTracker& normals, KeptNarrowPhase& kept,
                                 ImpulseContact& contact) {
   const PairReach& reach = reaches_[k];
@@ -147,7 +148,7 @@ bool SlowPairCache::passContact(const World& world, const StepBodies& bodies, st
   if (reach.count > 0 && !mayTouch(bodies, reach, margin)) return false;
   bool& remembered = predicted_[k].remembered;
   if (reach.count > 0) {
-    if (!predictedContact(world, k, reach, gravityStep, dt, margin, contact)) return false;
+    if (!predictedContact(world, bodies, k, reach, dt, margin, contact)) return false;
     // The bodies have not moved since the cache was built: its manifold names the face, the
     // same in every pass, so remembering it once is remembering it every pass.
     if (!remembered) normals.remember(world, pairs_[k].manifold);

@@ -7,8 +7,15 @@
 
 namespace boxsim {
 
-void StepBodies::build(const World& world, const Vec3& gravityStep, double dt, double exactReach) {
+void StepBodies::build(const World& world, const Vec3& gravityStep, double dt, double exactReach,
+                       bool anchoredNow) {
   const std::size_t n = world.bodies.size();
+  anchored = anchoredNow;
+  anchorShift.assign(anchored ? n : 0, Vec3::Zero());
+  anchorTurn.assign(anchored ? n : 0, Vec3::Zero());
+  anchorSlack.assign(n, 0.0);
+  anchorMoved.assign(anchored ? n : 0, 0);
+  passOmega.resize(n);
   immovable.assign(n, 0);
   if (fast.size() != n) fast.assign(n, 0);
   lo.resize(n);
@@ -26,11 +33,20 @@ void StepBodies::build(const World& world, const Vec3& gravityStep, double dt, d
     immovable[i] = static_cast<char>(body.immovable);
     halfDiagonal[i] = body.halfExtents.norm();
     slowReach[i] = exactReach * body.halfExtents.minCoeff();
+    const bool fastNow = !body.immovable &&
+                         passReach(body.v, body.omega, gravityStep, dt, halfDiagonal[i]) >
+                             exactReach * body.halfExtents.minCoeff();
+    // With an anchor a body fast now is anchored where the first pass predicts it, and is
+    // slow while the passes' predictions stay near there; a slow one stays anchored where it
+    // stands.
+    if (anchored && fastNow) {
+      anchorShift[i] = dt * (body.v + gravityStep);
+      anchorTurn[i] = dt * body.omega;
+      anchorSlack[i] = anchorTurn[i].norm() * halfDiagonal[i];
+      anchorMoved[i] = 1;
+    }
     setPass(body, static_cast<int>(i), gravityStep, dt);
-    if (body.immovable) continue;
-    if (passReach(body.v, body.omega, gravityStep, dt, halfDiagonal[i]) >
-        exactReach * body.halfExtents.minCoeff())
-      fast[i] = 1;
+    if (fastNow && !anchored) fast[i] = 1;
   }
 }
 
@@ -43,7 +59,12 @@ bool StepBodies::sameMobility(const World& world) const {
 
 void StepBodies::setPass(const RigidBody& body, int i, const Vec3& gravityStep, double dt) {
   passVelocity[i] = body.immovable ? body.v : Vec3(body.v + gravityStep);
-  passSpin[i] = body.omega.norm();
+  passOmega[i] = body.omega;
+  if (anchored) {
+    passVelocity[i] -= anchorShift[i] / dt;
+    passOmega[i] -= anchorTurn[i] / dt;
+  }
+  passSpin[i] = passOmega[i].norm();
   passTurn[i] = dt * passSpin[i] * halfDiagonal[i];
   passDt = dt;
 }

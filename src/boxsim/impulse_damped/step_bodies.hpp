@@ -43,15 +43,37 @@ struct StepBodies {
   std::vector<Vec3> passVelocity;    ///< m/s, v' of this pass: v + g Δt when movable
   std::vector<double> passTurn;      ///< m, Δt |ω| ρ of this pass
   std::vector<double> passSpin;      ///< rad/s, |ω| of this pass
+  /// rad/s, the ω of this pass the slow pairs' prediction turns a body by (ω, or ω - ω_0
+  /// with a predicted anchor); passSpin is its norm.
+  std::vector<Vec3> passOmega;
+  /// With a predicted anchor (ImpulseParams::predictedAnchor): where the cache's poses stand,
+  /// as the displacement Δt_0 (v_0 + g Δt_0) (m) and the turn Δt_0 ω_0 (rad) from the current
+  /// pose, with the velocities and step when it was built; zero for immovable bodies. Empty
+  /// without.
+  std::vector<Vec3> anchorShift;
+  std::vector<Vec3> anchorTurn;  ///< rad, see anchorShift
+  /// m, |anchorTurn| ρ: how far the anchor's turn moves a point of the body, so its bounds at
+  /// the anchor lie within those about the anchored centre with the current half widths
+  /// widened by this (0 without an anchor).
+  std::vector<double> anchorSlack;
+  /// With a predicted anchor: whether the body's anchor is its predicted pose (it was fast
+  /// when built) rather than where it stands.
+  std::vector<char> anchorMoved;
+  bool anchored = false;  ///< built with a predicted anchor
   double passDt = 0.0;               ///< s, the Δt of the pass values
 
   /// Takes every body as it stands (mobility, bounds, half diagonal, slow bar, pass motion)
   /// and marks fast each movable body whose passReach exceeds exactReach (units of the
   /// smallest half extent ℓ).
-  void build(const World& world, const Vec3& gravityStep, double dt, double exactReach);
+  /// With `anchored` (ImpulseParams::predictedAnchor) no body is fast when built: the anchor
+  /// is where the first pass predicts it, and a body turns fast only when a pass' prediction
+  /// moves away from there by more than exactReach ℓ (anchorShift and anchorTurn are taken).
+  void build(const World& world, const Vec3& gravityStep, double dt, double exactReach,
+             bool anchored = false);
   /// Whether the bodies were taken with the mobility each body of `world` has now.
   bool sameMobility(const World& world) const;
-  /// Records body i's motion in this pass from its velocities (v' = v + g Δt when movable).
+  /// Records body i's motion in this pass from its velocities (v' = v + g Δt when movable);
+  /// with an anchor, less the anchor's: v' - anchorShift / Δt and ω - anchorTurn / Δt.
   void setPass(const RigidBody& body, int i, const Vec3& gravityStep, double dt);
   /// Whether bodies a and b move together in this pass: Δt |v'_a - v'_b| plus both turns
   /// within the slow bar of the smaller body (ImpulseParams::pairReach).
