@@ -113,6 +113,9 @@ class ContactGathering {
     sleepers_ = asleep;
     once_.setSleepers(asleep);
   }
+  /// OncePerStep with a predicted anchor: the bodies touching another at the step's start (one
+  /// flag per body; OncePerStepGathering::setTouching), or null: every fast body is anchored.
+  void setTouching(const std::vector<char>* touching) { once_.setTouching(touching); }
   /// Where the work the passes' threads share is measured (ParallelWork; benches), or null:
   /// none. The pointer must outlive the gathering's use of it.
   void setParallelWork(ParallelWork* work) {

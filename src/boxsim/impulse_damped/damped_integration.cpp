@@ -188,6 +188,17 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
   // Bodies that take part in a contact (or, with dampCollidingBodies, a collision) this step.
   std::vector<char>& touched = touched_;
   touched.assign(n, 0);
+  // With a predicted anchor, the bodies touching another where the last step left them (its
+  // FIXCONTACTCONSTRAINTS found their contacts at these very poses) are those anchored.
+  if (params_.impulse.predictedAnchor) {
+    touchingAtStart_.assign(n, 0);
+    for (const ContactManifold& m : lastContacts_)
+      if (m.count > 0 && m.a >= 0 && m.b >= 0 && static_cast<std::size_t>(m.a) < n &&
+          static_cast<std::size_t>(m.b) < n)
+        touchingAtStart_[static_cast<std::size_t>(m.a)] =
+            touchingAtStart_[static_cast<std::size_t>(m.b)] = 1;
+    gathering_.setTouching(&touchingAtStart_);
+  }
   // The contacts of the step's start, found before the first pass would find them.
   gathering_.beginStep(world, dt, GravityMode::VelocityPlusGravity, margin);
   clock.lap(&DampedStepProfile::stepContacts);

@@ -234,6 +234,8 @@ class DampedIntegrationStepper final : public Stepper {
   // those poses (x, q per body), so that a world moved or changed between steps has its
   // contacts found again.
   std::vector<ContactManifold> lastContacts_;
+  /// Per body: it touches another in lastContacts_ (with a predicted anchor only).
+  std::vector<char> touchingAtStart_;
   std::vector<std::pair<Vec3, Quat>> lastPoses_;
   ContactIslands supportedIslands_;  ///< keepSupported's working room
   /// The working lists of a step, kept from step to step for their room: the bodies a step's

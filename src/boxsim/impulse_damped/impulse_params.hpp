@@ -121,11 +121,13 @@ struct ImpulseParams {
   /// OncePerStep: where the step's cache of slow pairs is found and its Taylor prediction
   /// starts. false (the default): at the current poses, each pass predicting the whole
   /// displacement Δt (v' + ω × r) to the pass' pose, and a body is fast when that exceeds
-  /// exactReach ℓ. true: at the poses the first pass predicts, x + Δt (v + g Δt) and q turned by
-  /// Δt ω with the step's starting velocities, each pass predicting only how far its own
-  /// prediction has moved from there, Δt (v' - v'_0) and Δt (ω - ω_0); a body is fast when that
-  /// exceeds exactReach ℓ. A falling or sliding body whose velocity the passes barely change is
-  /// then slow, and its pairs cost a Taylor prediction instead of an exact narrow phase per pass.
+  /// exactReach ℓ. true: for a body fast at the step's start (and, under damped integration,
+  /// touching another there: OncePerStepGathering::setTouching), at the pose the first pass
+  /// predicts, x + Δt (v + g Δt) and q turned by Δt ω with the step's starting velocities, each
+  /// pass predicting only how far its own prediction has moved from there, Δt (v' - v'_0) and
+  /// Δt (ω - ω_0); such a body is fast when that exceeds exactReach ℓ. A falling or sliding body
+  /// whose velocity the passes barely change is then slow, and its pairs cost a Taylor
+  /// prediction instead of an exact narrow phase per pass.
   /// DEVIATION(RESOLVECOLLISIONS L2-L3, RESOLVECONTACTS L2-L3): as the slow pairs' prediction,
   /// from another starting pose.
   bool predictedAnchor = false;

@@ -44,7 +44,8 @@ void OncePerStepGathering::beginStep(const World& world, const Vec3& gravityStep
 void OncePerStepGathering::buildCache(const World& world, const Vec3& gravityStep, double dt,
                                       double margin, ContactNormalTracker& normals) {
   const bool anchored = params_.predictedAnchor;
-  bodies_.build(world, gravityStep, dt, params_.exactReach, anchored);
+  bodies_.build(world, gravityStep, dt, params_.exactReach, anchored,
+                touching_ && touching_->size() == world.bodies.size() ? touching_ : nullptr);
   slowPairs_.clear();
   // DEVIATION(RESOLVECOLLISIONS L2-L3, RESOLVECONTACTS L2-L3), with a predicted anchor: the slow
   // pairs are found where the first pass predicts their bodies (ImpulseParams::predictedAnchor).
@@ -256,23 +257,49 @@ void OncePerStepGathering::gatherFastPairs(World& world, const Vec3& gravityStep
         !work_ && (params_.threads < 2 || lastPassTests_ < params_.parallelNarrowPhases);
     int tests = 0;
     FastPairTask task;
-    for (std::size_t k = 0; k < candidates.size(); ++k) {
-      if (!poses_.fastAtPredicted(candidates[k].a) && !poses_.fastAtPredicted(candidates[k].b))
-        continue;
-      if (!planFastPair(world, k, gravityStep, dt, margin, task)) continue;
+    const auto visit = [&](std::size_t k) {
+      if (!planFastPair(world, k, gravityStep, dt, margin, task)) return;
       if (!inOrder) {
         if (task.test >= 0) {
           task.test = static_cast<int>(fastTests_.size());
           fastTests_.push_back(static_cast<int>(fastTasks_.size()));
         }
         fastTasks_.push_back(task);
-        continue;
+        return;
       }
       if (task.test >= 0) {
         task.touching = candidateManifold(world, task, margin, tested);
         ++tests;
       }
       finishFastPair(world, task, tested, normals);
+    };
+    // The candidates with a fast body, in candidate order: from the fast bodies' own lists when
+    // they hold few of the candidates (a few fast bodies among many slow ones), else by walking
+    // every candidate. The same pairs in the same order either way.
+    // The lists are made (once for the step's candidates) only when a body in eight or fewer
+    // is fast.
+    std::size_t listed = candidates.size();
+    if (8 * fastThisPass_.size() <= world.bodies.size()) {
+      indexCandidatesByBody(world.bodies.size());
+      listed = 0;
+      for (int i : fastThisPass_)
+        if (poses_.fastAtPredicted(i))
+          listed += static_cast<std::size_t>(byBodyStart_[i + 1] - byBodyStart_[i]);
+    }
+    if (4 * listed < candidates.size()) {
+      fastCandidates_.clear();
+      for (int i : fastThisPass_)
+        if (poses_.fastAtPredicted(i))
+          fastCandidates_.insert(fastCandidates_.end(), byBody_.begin() + byBodyStart_[i],
+                                 byBody_.begin() + byBodyStart_[i + 1]);
+      std::sort(fastCandidates_.begin(), fastCandidates_.end());
+      fastCandidates_.erase(std::unique(fastCandidates_.begin(), fastCandidates_.end()),
+                            fastCandidates_.end());
+      for (int k : fastCandidates_) visit(static_cast<std::size_t>(k));
+    } else {
+      for (std::size_t k = 0; k < candidates.size(); ++k)
+        if (poses_.fastAtPredicted(candidates[k].a) || poses_.fastAtPredicted(candidates[k].b))
+          visit(k);
     }
     lastPassTests_ = inOrder ? tests : static_cast<int>(fastTests_.size());
   }
@@ -419,6 +446,29 @@ bool OncePerStepGathering::candidateManifold(const World& world, FastPairTask& t
   candidate.axis = sat;
   candidate.apart = manifold.count == 0;
   return manifold.count > 0;
+}
+
+void OncePerStepGathering::indexCandidatesByBody(std::size_t n) {
+  const std::vector<StepCandidates::Candidate>& candidates = candidates_.candidates();
+  if (byBodySweep_ == candidates_.sweeps() && byBodyCount_ == candidates.size() &&
+      byBodyStart_.size() == n + 1)
+    return;
+  byBodyStart_.assign(n + 1, 0);
+  for (const StepCandidates::Candidate& c : candidates) {
+    ++byBodyStart_[static_cast<std::size_t>(c.a) + 1];
+    ++byBodyStart_[static_cast<std::size_t>(c.b) + 1];
+  }
+  for (std::size_t i = 0; i < n; ++i) byBodyStart_[i + 1] += byBodyStart_[i];
+  byBody_.resize(static_cast<std::size_t>(byBodyStart_[n]));
+  fill_.assign(byBodyStart_.begin(), byBodyStart_.end() - 1);
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    byBody_[static_cast<std::size_t>(fill_[static_cast<std::size_t>(candidates[k].a)]++)] =
+        static_cast<int>(k);
+    byBody_[static_cast<std::size_t>(fill_[static_cast<std::size_t>(candidates[k].b)]++)] =
+        static_cast<int>(k);
+  }
+  byBodySweep_ = candidates_.sweeps();
+  byBodyCount_ = candidates.size();
 }
 
 void OncePerStepGathering::putBackAll(World& world) {

@@ -123,6 +123,12 @@ class OncePerStepGathering {
   /// movable there and join their partners' islands (contact_islands.hpp). The vector must
   /// outlive the step.
   void setSleepers(const std::vector<char>* asleep) { sleepers_ = asleep; }
+  /// With a predicted anchor (ImpulseParams::predictedAnchor): the bodies touching another at
+  /// the step's start, one flag per body, or null (or another size): every body fast at the
+  /// start is anchored where the first pass predicts it. Given, only those that touch are: a
+  /// free-flying body has no contact for the passes to predict, and its pairs are found as
+  /// they come near, as without the anchor. The pointer must stay valid while steps run.
+  void setTouching(const std::vector<char>* touching) { touching_ = touching; }
   /// Where the shared narrow phases' work is measured (ParallelWork), or null: none. While
   /// measured, every pass plans its pairs before their narrow phases, on one thread too.
   void setParallelWork(ParallelWork* work);
@@ -208,6 +214,9 @@ class OncePerStepGathering {
   /// `manifold`.
   bool candidateManifold(const World& world, FastPairTask& task, double margin,
                          ContactManifold& manifold);
+  /// Lists each body's candidates (byBody_, byBodyStart_) for the step's candidates of `n`
+  /// bodies, unless listed already for these candidates.
+  void indexCandidatesByBody(std::size_t n);
   /// revertToOriginalPositions for the pass' partners and fast bodies, before COLLIDE.
   void putBackAll(World& world);
   /// The cached pairs' contacts of this pass merged with fastContacts_ in (a, b) order.
@@ -225,7 +234,7 @@ class OncePerStepGathering {
   double cacheMargin_ = 0.0;  ///< m, the margin the cache was built for
   StepBodies bodies_;
   /// With a predicted anchor (ImpulseParams::predictedAnchor): the bodies at their anchors,
-  /// where the slow pairs are found and predicted from (StepBodies::anchorShift).
+  /// where the slow pairs are found and predicted from (StepBodies::anchorVelocity).
   World anchorWorld_;
   StepCandidates candidates_;
   SlowPairCache slowPairs_;
@@ -236,6 +245,15 @@ class OncePerStepGathering {
   std::vector<int> outgrown_;         ///< this pass: fast bodies that outgrew their swept bounds
   std::vector<ContactManifold> manifolds_;  ///< the candidates' last manifolds (Candidate::manifold)
   std::vector<ImpulseContact> fastContacts_;  ///< this pass: the pairs with a fast body, by pair
+  /// Each body's candidates in candidate order: body i's are byBody_[byBodyStart_[i] ..
+  /// byBodyStart_[i + 1]) (indexCandidatesByBody), for the sweep byBodySweep_ with
+  /// byBodyCount_ candidates.
+  std::vector<int> byBody_;
+  std::vector<int> byBodyStart_;
+  std::vector<int> fill_;              ///< indexCandidatesByBody's cursors
+  std::uint64_t byBodySweep_ = 0;
+  std::size_t byBodyCount_ = 0;
+  std::vector<int> fastCandidates_;    ///< this pass: the candidates with a fast body, listed
   std::vector<FastPairTask> fastTasks_;       ///< this pass: planFastPair's list, in order
   std::vector<int> fastTests_;                ///< this pass: the tasks with a narrow phase
   std::vector<ContactManifold> fastTested_;   ///< per narrow phase of fastTests_: its manifold
@@ -248,6 +266,7 @@ class OncePerStepGathering {
   std::vector<char> skip_;            ///< per body, this pass: its island is settled
   std::vector<char> movable_;         ///< per body, refreshIslands(): movable, or a sleeper
   const std::vector<char>* sleepers_ = nullptr;  ///< setSleepers()
+  const std::vector<char>* touching_ = nullptr;  ///< setTouching()
   ParallelWork* work_ = nullptr;                 ///< setParallelWork()
   bool anySkipped_ = false;           ///< this pass: some body's island is settled
   long narrowPhases_ = 0;

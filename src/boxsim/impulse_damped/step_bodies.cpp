@@ -8,13 +8,15 @@
 namespace boxsim {
 
 void StepBodies::build(const World& world, const Vec3& gravityStep, double dt, double exactReach,
-                       bool anchoredNow) {
+                       bool anchoredNow, const std::vector<char>* touching) {
   const std::size_t n = world.bodies.size();
   anchored = anchoredNow;
-  anchorShift.assign(anchored ? n : 0, Vec3::Zero());
-  anchorTurn.assign(anchored ? n : 0, Vec3::Zero());
+  anchorVelocity.assign(anchored ? n : 0, Vec3::Zero());
+  anchorOmega.assign(anchored ? n : 0, Vec3::Zero());
+  anchorDt = dt;
+  anchorScale = 1.0;
   anchorSlack.assign(n, 0.0);
-  anchorMoved.assign(anchored ? n : 0, 0);
+  anchorMoved.assign(n, 0);
   passOmega.resize(n);
   immovable.assign(n, 0);
   if (fast.size() != n) fast.assign(n, 0);
@@ -39,14 +41,14 @@ void StepBodies::build(const World& world, const Vec3& gravityStep, double dt, d
     // With an anchor a body fast now is anchored where the first pass predicts it, and is
     // slow while the passes' predictions stay near there; a slow one stays anchored where it
     // stands.
-    if (anchored && fastNow) {
-      anchorShift[i] = dt * (body.v + gravityStep);
-      anchorTurn[i] = dt * body.omega;
-      anchorSlack[i] = anchorTurn[i].norm() * halfDiagonal[i];
+    if (anchored && fastNow && (!touching || (*touching)[i])) {
+      anchorVelocity[i] = body.v + gravityStep;
+      anchorOmega[i] = body.omega;
+      anchorSlack[i] = dt * anchorOmega[i].norm() * halfDiagonal[i];
       anchorMoved[i] = 1;
     }
     setPass(body, static_cast<int>(i), gravityStep, dt);
-    if (fastNow && !anchored) fast[i] = 1;
+    if (fastNow && !anchorMoved[i]) fast[i] = 1;
   }
 }
 
@@ -61,8 +63,10 @@ void StepBodies::setPass(const RigidBody& body, int i, const Vec3& gravityStep, 
   passVelocity[i] = body.immovable ? body.v : Vec3(body.v + gravityStep);
   passOmega[i] = body.omega;
   if (anchored) {
-    passVelocity[i] -= anchorShift[i] / dt;
-    passOmega[i] -= anchorTurn[i] / dt;
+    // The anchor moved by Δt_0 v'_0 and turned by Δt_0 ω_0: per second of this pass' Δt.
+    if (dt != passDt) anchorScale = anchorDt / dt;
+    passVelocity[i] -= anchorScale * anchorVelocity[i];
+    passOmega[i] -= anchorScale * anchorOmega[i];
   }
   passSpin[i] = passOmega[i].norm();
   passTurn[i] = dt * passSpin[i] * halfDiagonal[i];

@@ -47,12 +47,13 @@ struct StepBodies {
   /// with a predicted anchor); passSpin is its norm.
   std::vector<Vec3> passOmega;
   /// With a predicted anchor (ImpulseParams::predictedAnchor): where the cache's poses stand,
-  /// as the displacement Δt_0 (v_0 + g Δt_0) (m) and the turn Δt_0 ω_0 (rad) from the current
-  /// pose, with the velocities and step when it was built; zero for immovable bodies. Empty
-  /// without.
-  std::vector<Vec3> anchorShift;
-  std::vector<Vec3> anchorTurn;  ///< rad, see anchorShift
-  /// m, |anchorTurn| ρ: how far the anchor's turn moves a point of the body, so its bounds at
+  /// as the velocity v'_0 = v_0 + g Δt_0 (m/s) that moves the body there from its current pose
+  /// in Δt_0 = anchorDt; zero for a body anchored where it stands. Empty without.
+  std::vector<Vec3> anchorVelocity;
+  std::vector<Vec3> anchorOmega;  ///< rad/s, the ω_0 that turns it there in Δt_0
+  double anchorDt = 0.0;          ///< s, the Δt_0 of the anchor
+  double anchorScale = 1.0;       ///< Δt_0 / Δt of the pass (setPass)
+  /// m, Δt_0 |ω_0| ρ: how far the anchor's turn moves a point of the body, so its bounds at
   /// the anchor lie within those about the anchored centre with the current half widths
   /// widened by this (0 without an anchor).
   std::vector<double> anchorSlack;
@@ -67,13 +68,14 @@ struct StepBodies {
   /// smallest half extent ℓ).
   /// With `anchored` (ImpulseParams::predictedAnchor) no body is fast when built: the anchor
   /// is where the first pass predicts it, and a body turns fast only when a pass' prediction
-  /// moves away from there by more than exactReach ℓ (anchorShift and anchorTurn are taken).
+  /// moves away from there by more than exactReach ℓ (anchorVelocity and anchorOmega are taken).
+  /// `touching`, when given (one flag per body), limits the anchor to the bodies it flags.
   void build(const World& world, const Vec3& gravityStep, double dt, double exactReach,
-             bool anchored = false);
+             bool anchored = false, const std::vector<char>* touching = nullptr);
   /// Whether the bodies were taken with the mobility each body of `world` has now.
   bool sameMobility(const World& world) const;
   /// Records body i's motion in this pass from its velocities (v' = v + g Δt when movable);
-  /// with an anchor, less the anchor's: v' - anchorShift / Δt and ω - anchorTurn / Δt.
+  /// with an anchor, less the anchor's: v' - (Δt_0 / Δt) v'_0 and ω - (Δt_0 / Δt) ω_0.
   void setPass(const RigidBody& body, int i, const Vec3& gravityStep, double dt);
   /// Whether bodies a and b move together in this pass: Δt |v'_a - v'_b| plus both turns
   /// within the slow bar of the smaller body (ImpulseParams::pairReach).
