@@ -55,7 +55,9 @@ class BoxsimEngine : public PeerEngine {
   /// "+impact": 20 impact passes (DampedIntegrationParams::impactPasses, "damped+impact"), in
   /// "+supported": damping of supported bodies only (DampingParams::supportedOnly,
   /// "damped+supported"), in "+anchor": the slow pairs found where the first pass predicts the
-  /// bodies fast at the step's start (ImpulseParams::predictedAnchor, "damped+anchor"), and
+  /// bodies fast at the step's start (ImpulseParams::predictedAnchor, "damped+anchor"), in
+  /// "+exact_edges": edge-edge pairs gathered exactly in every pass
+  /// (ImpulseParams::exactEdgePairs, "damped+exact_edges"), and
   /// in "+shared_work": the work its threads would share measured (sharedWork()); the suffixes
   /// in any order.
   explicit BoxsimEngine(std::string engine) {
@@ -69,7 +71,8 @@ class BoxsimEngine : public PeerEngine {
       const bool chatter = strip("+chatter"), friction = strip("+friction"),
                  underLoad = strip("+under_load"), threads = strip("+threads2"),
                  shared = strip("+shared_work"), impact = strip("+impact"),
-                 supported = strip("+supported"), anchor = strip("+anchor");
+                 supported = strip("+supported"), anchor = strip("+anchor"),
+                 exactEdges = strip("+exact_edges");
       if (chatter) options_.chatterDetection = true;
       if (friction) friction_ = true;
       if (underLoad) options_.geometricStability = GeometricStabilityMode::UnderLoad;
@@ -78,8 +81,9 @@ class BoxsimEngine : public PeerEngine {
       if (impact) options_.impactPasses = 20;
       if (supported) options_.dampSupportedOnly = true;
       if (anchor) options_.predictedAnchor = true;
+      if (exactEdges) options_.exactEdgePairs = true;
       stripped = chatter || friction || underLoad || threads || shared || impact || supported ||
-                 anchor;
+                 anchor || exactEdges;
     }
     const std::size_t slash = engine.find('/');
     method_ = engine.substr(0, slash);
@@ -96,6 +100,7 @@ class BoxsimEngine : public PeerEngine {
            (options_.dampSupportedOnly.value_or(false) ? " supported" : "") +
            (options_.impactPasses.value_or(0) > 0 ? " impact" : "") +
            (options_.predictedAnchor.value_or(false) ? " anchor" : "") +
+           (options_.exactEdgePairs.value_or(false) ? " exact edges" : "") +
            (options_.threads.value_or(1) > 1 ? " " + std::to_string(*options_.threads) + " threads"
                                              : "");
   }
@@ -107,7 +112,8 @@ class BoxsimEngine : public PeerEngine {
           (key == "geometric_stability" && value == "under_load") ||
           (key == "threads" && value != "1") || (key == "impact_passes" && value != "0") ||
           (key == "damp_supported_only" && value == "on") ||
-          (key == "predicted_anchor" && value == "on"))
+          (key == "predicted_anchor" && value == "on") ||
+          (key == "exact_edge_pairs" && value == "on"))
         text += (text.empty() ? "" : ", ") + key + " " + value;
     return (text.empty() ? "defaults" : text) +
            (friction_ ? ", Coulomb friction as the peers (patch friction at each contact's centroid)"

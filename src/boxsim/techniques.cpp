@@ -25,6 +25,7 @@ void refuseOptions(const std::string& method, const TechniqueOptions& options,
       {!takesImpulseOptions && options.contactGathering.has_value(), "contact gathering"},
       {!takesImpulseOptions && options.threads.has_value(), "threads"},
       {!takesImpulseOptions && options.predictedAnchor.has_value(), "predicted anchor"},
+      {!takesImpulseOptions && options.exactEdgePairs.has_value(), "exact edge pairs"},
       {options.sleep.has_value(), "sleep"},
       {options.chatterDetection.has_value(), "chatter detection"},
       {options.dampSupportedOnly.has_value(), "damp supported only"},
@@ -83,6 +84,7 @@ std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueO
     if (options.contactGathering) params.impulse.gathering = *options.contactGathering;
     if (options.threads) params.impulse.threads = *options.threads;
     if (options.predictedAnchor) params.impulse.predictedAnchor = *options.predictedAnchor;
+    if (options.exactEdgePairs) params.impulse.exactEdgePairs = *options.exactEdgePairs;
     if (options.integrator) params.impulse.integrator = *options.integrator;
     return std::make_unique<ImpulseStepper>(params);
   }
@@ -92,6 +94,7 @@ std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueO
     if (options.contactGathering) params.impulse.gathering = *options.contactGathering;
     if (options.threads) params.impulse.threads = *options.threads;
     if (options.predictedAnchor) params.impulse.predictedAnchor = *options.predictedAnchor;
+    if (options.exactEdgePairs) params.impulse.exactEdgePairs = *options.exactEdgePairs;
     applyGeometricStability(options, params.useGeometricStability, params.geometricStability);
     if (options.sleep) params.sleep.enabled = *options.sleep;
     if (options.chatterDetection) params.sleep.chatterDetection = *options.chatterDetection;

@@ -44,6 +44,8 @@ struct TechniqueOptions {
   std::optional<bool> continuousCollision;
   /// ImpulseParams::predictedAnchor of impulse and damped; empty: default (off).
   std::optional<bool> predictedAnchor;
+  /// ImpulseParams::exactEdgePairs of impulse and damped; empty: default (off).
+  std::optional<bool> exactEdgePairs;
   /// Collision passes damped integration may add while a pass still stops an impact
   /// (DampedIntegrationParams::impactPasses, >= 0); empty: default (0, A.2 as written).
   std::optional<int> impactPasses;

@@ -35,6 +35,7 @@ struct RunArgs {
   std::optional<bool> fixStopApproach;
   std::optional<bool> continuousCollision;
   std::optional<bool> predictedAnchor;
+  std::optional<bool> exactEdgePairs;
   std::optional<int> impactPasses;  // empty: the method's default (0)
   std::string broadPhase;     // empty: the scene's choice
   std::optional<unsigned long> plausibilitySeed;
@@ -99,6 +100,7 @@ TechniqueOptions techniqueOptions(const RunArgs& args) {
   options.fixStopApproach = args.fixStopApproach;
   options.continuousCollision = args.continuousCollision;
   options.predictedAnchor = args.predictedAnchor;
+  options.exactEdgePairs = args.exactEdgePairs;
   options.impactPasses = args.impactPasses;
   options.plausibilitySeed = args.plausibilitySeed;
   options.threads = args.threads;
@@ -196,6 +198,12 @@ void addRunCommand(CLI::App& app) {
                   "fast at a step's start where its first pass predicts them, and predict the "
                   "passes from there, so that a body whose velocity the passes barely change "
                   "costs no narrow phase per pass: on, off (default, from the current poses)")
+      ->check(CLI::IsMember({"on", "off"}));
+  cmd->add_option("--exact-edge-pairs", args->exactEdgePairs,
+                  "Once-per-step gathering of impulse and damped: gather a pair that touches "
+                  "edge to edge at the step's start exactly in every pass instead of predicting "
+                  "its points (a small turn brings another corner into contact): on, off "
+                  "(default)")
       ->check(CLI::IsMember({"on", "off"}));
   cmd->add_option("--geometric-stability", args->geometricStability,
                   "Bodies that gravity and frictionless contact cannot move (analytic: left out "

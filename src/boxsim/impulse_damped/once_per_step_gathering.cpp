@@ -76,18 +76,31 @@ void OncePerStepGathering::buildCache(const World& world, const Vec3& gravitySte
   for (std::size_t k = 0; k < candidates.size(); ++k) {
     StepCandidates::Candidate& candidate = candidates[k];
     candidate.cached = -1;
+    candidate.exactEach = false;
     double pairMargin = 0.0;
-    if (!slowPairs_.wanted(cacheWorld, bodies_, candidate.a, candidate.b, margin, params_.slowWidening,
-                           pairMargin))
+    if (!slowPairs_.wanted(cacheWorld, bodies_, candidate.a, candidate.b, margin,
+                           params_.slowWidening, pairMargin))
       continue;
     batch.push_back({candidate.a, candidate.b, pairMargin});
     batchCandidates_.push_back(static_cast<int>(k));
   }
+  exactCandidates_.clear();
   kept_.collideAll(cacheWorld, [&](std::size_t r, const ContactManifold& m) {
     const KeptNarrowPhase::Request& request = batch[r];
-    candidates[static_cast<std::size_t>(batchCandidates_[r])].cached =
+    StepCandidates::Candidate& candidate =
+        candidates[static_cast<std::size_t>(batchCandidates_[r])];
+    // ImpulseParams::exactEdgePairs: an edge-edge manifold, or none within the margin although
+    // the pair is within it, is not cached; the pair is gathered exactly in every pass.
+    if (params_.exactEdgePairs &&
+        (m.count > 0 ? m.kind == AxisKind::EdgeEdge : m.depth > -request.margin)) {
+      candidate.exactEach = true;
+      exactCandidates_.push_back(batchCandidates_[r]);
+      return;
+    }
+    candidate.cached =
         slowPairs_.add(cacheWorld, bodies_, request.i, request.j, request.margin, m, normals);
   });
+  exactSweep_ = candidates_.sweeps();
   ++narrowPhases_;
   // Every predicted pose and every candidate's answer is from before this build.
   buildStamp_ = stamps_.next();
@@ -243,7 +256,16 @@ void OncePerStepGathering::gatherFastPairs(World& world, const Vec3& gravityStep
   fastTasks_.clear();
   fastTests_.clear();
   ContactManifold tested;  // one thread: the narrow phase of the pair being gathered
-  if (anyFast) {
+  // A sweep since the build (grow()) renumbered the candidates: the exactly gathered ones are
+  // found again by their flag, which the sweep carried over.
+  if (exactSweep_ != candidates_.sweeps()) {
+    exactCandidates_.clear();
+    const std::vector<StepCandidates::Candidate>& all = candidates_.candidates();
+    for (std::size_t k = 0; k < all.size(); ++k)
+      if (all[k].exactEach) exactCandidates_.push_back(static_cast<int>(k));
+    exactSweep_ = candidates_.sweeps();
+  }
+  if (anyFast || !exactCandidates_.empty()) {
     const std::vector<StepCandidates::Candidate>& candidates = candidates_.candidates();
     // Only pairs with a fast body at its predicted pose (planFastPair's precondition): most
     // candidates of a settling heap have none and cost no call.
@@ -292,13 +314,16 @@ void OncePerStepGathering::gatherFastPairs(World& world, const Vec3& gravityStep
         if (poses_.fastAtPredicted(i))
           fastCandidates_.insert(fastCandidates_.end(), byBody_.begin() + byBodyStart_[i],
                                  byBody_.begin() + byBodyStart_[i + 1]);
+      fastCandidates_.insert(fastCandidates_.end(), exactCandidates_.begin(),
+                             exactCandidates_.end());
       std::sort(fastCandidates_.begin(), fastCandidates_.end());
       fastCandidates_.erase(std::unique(fastCandidates_.begin(), fastCandidates_.end()),
                             fastCandidates_.end());
       for (int k : fastCandidates_) visit(static_cast<std::size_t>(k));
     } else {
       for (std::size_t k = 0; k < candidates.size(); ++k)
-        if (poses_.fastAtPredicted(candidates[k].a) || poses_.fastAtPredicted(candidates[k].b))
+        if (poses_.fastAtPredicted(candidates[k].a) || poses_.fastAtPredicted(candidates[k].b) ||
+            candidates[k].exactEach)
           visit(k);
     }
     lastPassTests_ = inOrder ? tests : static_cast<int>(fastTests_.size());
@@ -333,6 +358,18 @@ bool OncePerStepGathering::planFastPair(const World& world, std::size_t k,
       slowPairs_.predictedTogether(
           bodies_, slowPairs_.reaches()[static_cast<std::size_t>(candidate.cached)]))
     return false;
+  // A pair of slow bodies gathered exactly (ImpulseParams::exactEdgePairs): both stand at
+  // their predicted poses for its narrow phase, as a fast body's partner does; not in a pass
+  // its island sits out.
+  if (candidate.exactEach && !poses_.fastAtPredicted(a) && !poses_.fastAtPredicted(b)) {
+    if (skip_[a] || skip_[b]) return false;
+    for (const int j : {a, b}) {
+      const RigidBody& body = world.bodies[j];
+      if (body.immovable || poses_.atPredicted(j)) continue;
+      poses_.standPartner(j);
+      poses_.prepare(body, j, dt, gravityStep, buildStamp_, stamps_);
+    }
+  }
   // RESOLVECOLLISIONS L2, RESOLVECONTACTS L2: a moved body's slow partner too, as written, so the narrow phase sees both where
   // the pass predicts them. It moves by at most its reach, so if its bounds stay farther than
   // that plus the margin from the moved body's, the pair cannot touch in the pass and it need

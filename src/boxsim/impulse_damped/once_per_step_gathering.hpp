@@ -196,7 +196,8 @@ class OncePerStepGathering {
   /// partner, and says in `task` whether the pair's cached manifold is its answer (test < 0) or
   /// a narrow phase has to run (test 0); false when the pair has no contact (or is predicted
   /// with the cached pairs). One of its bodies must stand fast at its predicted pose
-  /// (PassPoses::fastAtPredicted).
+  /// (PassPoses::fastAtPredicted), or the pair be gathered exactly although slow
+  /// (Candidate::exactEach; then both are stood there).
   bool planFastPair(const World& world, std::size_t k, const Vec3& gravityStep, double dt,
                     double margin, FastPairTask& task);
   /// The narrow phases planFastPair listed, each into its own slot of fastTested_; on several
@@ -254,6 +255,9 @@ class OncePerStepGathering {
   std::uint64_t byBodySweep_ = 0;
   std::size_t byBodyCount_ = 0;
   std::vector<int> fastCandidates_;    ///< this pass: the candidates with a fast body, listed
+  /// The candidates gathered exactly although slow (Candidate::exactEach), in candidate order.
+  std::vector<int> exactCandidates_;
+  std::uint64_t exactSweep_ = 0;  ///< the sweep exactCandidates_ numbers candidates of
   std::vector<FastPairTask> fastTasks_;       ///< this pass: planFastPair's list, in order
   std::vector<int> fastTests_;                ///< this pass: the tasks with a narrow phase
   std::vector<ContactManifold> fastTested_;   ///< per narrow phase of fastTests_: its manifold

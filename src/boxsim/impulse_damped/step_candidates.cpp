@@ -146,6 +146,9 @@ void StepCandidates::sweep(const World& world, const StepBodies& bodies,
     if (before) {
       candidate.axis = before->axis;
       candidate.apart = before->apart;
+      // Within a step (a sweep grow() redoes) the pair stays gathered as it was; the cache's
+      // build decides afresh at a step's start.
+      candidate.exactEach = before->exactEach;
     }
     if (seek(k, cached.size(), cachedKey, key)) candidate.cached = static_cast<int>(k);
   }

@@ -46,6 +46,9 @@ class StepCandidates {
     int cached = -1;
     /// The pair's places in the normal model's tables of faces, for its contacts in the passes.
     ContactNormalTracker::FacePlaces faces{};
+    /// Gathered as a pair with a fast body in every pass although both are slow
+    /// (ImpulseParams::exactEdgePairs): its cached manifold would have been edge-edge or empty.
+    bool exactEach = false;
   };
 
   /// `slowWidening`: ImpulseParams::slowWidening; each body's swept bounds hold its bounds
