@@ -322,7 +322,7 @@ TEST_CASE("With the predicted anchor a falling box is predicted from its first p
   CHECK(unanchored.passNarrowPhases() > 0);
 }
 
-TEST_CASE("On a settling pile the cache misses contacts of edge-edge pairs; gathered exactly, none",
+TEST_CASE("On a settling pile the cache misses contacts of edge-edge pairs, and none when they are gathered exactly",
           "[impulse_damped][contact_gathering][reference]") {
   // pile343.json a second after its drop (damped integration, e = 0), then the passes of ten
   // steps run by hand, each pass' once-per-step contacts compared with every-pass gathering on
