@@ -57,7 +57,7 @@ void OncePerStepGathering::buildCache(const World& world, const Vec3& gravitySte
     for (std::size_t i = 0; i < anchorWorld_.bodies.size(); ++i)
       if (bodies_.anchorMoved[i]) movePredicted(anchorWorld_.bodies[i], dt, gravityStep);
   }
-  const World& cacheWorld = anchored ? anchorWorld_ : world;
+  const World& cacheWorld = cacheWorldOf(world);
   // Wider than the passes need: their own test (boundsWithin with `margin`) picks from the
   // candidates, so a wider sweep finds the same contacts, and it makes the candidates hold the
   // pairs FIXCONTACTCONSTRAINTS looks at after the passes (stepPairs), whose margin
@@ -302,18 +302,18 @@ void OncePerStepGathering::gatherFastPairs(World& world, const Vec3& gravityStep
     // is fast.
     std::size_t listed = candidates.size();
     if (8 * fastThisPass_.size() <= world.bodies.size()) {
-      indexCandidatesByBody(world.bodies.size());
+      candidates_.indexByBody(world.bodies.size());
       listed = 0;
       for (int i : fastThisPass_)
-        if (poses_.fastAtPredicted(i))
-          listed += static_cast<std::size_t>(byBodyStart_[i + 1] - byBodyStart_[i]);
+        if (poses_.fastAtPredicted(i)) listed += candidates_.ofBody(i).size();
     }
     if (4 * listed < candidates.size()) {
       fastCandidates_.clear();
       for (int i : fastThisPass_)
-        if (poses_.fastAtPredicted(i))
-          fastCandidates_.insert(fastCandidates_.end(), byBody_.begin() + byBodyStart_[i],
-                                 byBody_.begin() + byBodyStart_[i + 1]);
+        if (poses_.fastAtPredicted(i)) {
+          const std::span<const int> own = candidates_.ofBody(i);
+          fastCandidates_.insert(fastCandidates_.end(), own.begin(), own.end());
+        }
       fastCandidates_.insert(fastCandidates_.end(), exactCandidates_.begin(),
                              exactCandidates_.end());
       std::sort(fastCandidates_.begin(), fastCandidates_.end());
@@ -485,29 +485,6 @@ bool OncePerStepGathering::candidateManifold(const World& world, FastPairTask& t
   return manifold.count > 0;
 }
 
-void OncePerStepGathering::indexCandidatesByBody(std::size_t n) {
-  const std::vector<StepCandidates::Candidate>& candidates = candidates_.candidates();
-  if (byBodySweep_ == candidates_.sweeps() && byBodyCount_ == candidates.size() &&
-      byBodyStart_.size() == n + 1)
-    return;
-  byBodyStart_.assign(n + 1, 0);
-  for (const StepCandidates::Candidate& c : candidates) {
-    ++byBodyStart_[static_cast<std::size_t>(c.a) + 1];
-    ++byBodyStart_[static_cast<std::size_t>(c.b) + 1];
-  }
-  for (std::size_t i = 0; i < n; ++i) byBodyStart_[i + 1] += byBodyStart_[i];
-  byBody_.resize(static_cast<std::size_t>(byBodyStart_[n]));
-  fill_.assign(byBodyStart_.begin(), byBodyStart_.end() - 1);
-  for (std::size_t k = 0; k < candidates.size(); ++k) {
-    byBody_[static_cast<std::size_t>(fill_[static_cast<std::size_t>(candidates[k].a)]++)] =
-        static_cast<int>(k);
-    byBody_[static_cast<std::size_t>(fill_[static_cast<std::size_t>(candidates[k].b)]++)] =
-        static_cast<int>(k);
-  }
-  byBodySweep_ = candidates_.sweeps();
-  byBodyCount_ = candidates.size();
-}
-
 void OncePerStepGathering::putBackAll(World& world) {
   // DEVIATION(RESOLVECOLLISIONS L6, RESOLVECONTACTS L6): every body goes back before COLLIDE, the fast ones too, with its
   // velocities recomputed exactly as they were: the slow pairs' prediction and COLLIDE see
@@ -547,8 +524,8 @@ void OncePerStepGathering::mergeSlowPairs(const World& world, double dt,
       slowPairs_.forgetFace(k);
       continue;
     }
-    if (slowPairs_.passContact(bodies_.anchored ? anchorWorld_ : world, bodies_, k, dt, margin,
-                               normals, kept_, next()))
+    if (slowPairs_.passContact(cacheWorldOf(world), bodies_, k, dt, margin, normals, kept_,
+                               next()))
       ++count;
   }
   contacts.resize(count);

@@ -215,9 +215,11 @@ class OncePerStepGathering {
   /// `manifold`.
   bool candidateManifold(const World& world, FastPairTask& task, double margin,
                          ContactManifold& manifold);
-  /// Lists each body's candidates (byBody_, byBodyStart_) for the step's candidates of `n`
-  /// bodies, unless listed already for these candidates.
-  void indexCandidatesByBody(std::size_t n);
+  /// The world the slow pairs are found and predicted in: the bodies at their anchors with a
+  /// predicted anchor (anchorWorld_), else `world` itself.
+  const World& cacheWorldOf(const World& world) const {
+    return bodies_.anchored ? anchorWorld_ : world;
+  }
   /// revertToOriginalPositions for the pass' partners and fast bodies, before COLLIDE.
   void putBackAll(World& world);
   /// The cached pairs' contacts of this pass merged with fastContacts_ in (a, b) order.
@@ -246,14 +248,6 @@ class OncePerStepGathering {
   std::vector<int> outgrown_;         ///< this pass: fast bodies that outgrew their swept bounds
   std::vector<ContactManifold> manifolds_;  ///< the candidates' last manifolds (Candidate::manifold)
   std::vector<ImpulseContact> fastContacts_;  ///< this pass: the pairs with a fast body, by pair
-  /// Each body's candidates in candidate order: body i's are byBody_[byBodyStart_[i] ..
-  /// byBodyStart_[i + 1]) (indexCandidatesByBody), for the sweep byBodySweep_ with
-  /// byBodyCount_ candidates.
-  std::vector<int> byBody_;
-  std::vector<int> byBodyStart_;
-  std::vector<int> fill_;              ///< indexCandidatesByBody's cursors
-  std::uint64_t byBodySweep_ = 0;
-  std::size_t byBodyCount_ = 0;
   std::vector<int> fastCandidates_;    ///< this pass: the candidates with a fast body, listed
   /// The candidates gathered exactly although slow (Candidate::exactEach), in candidate order.
   std::vector<int> exactCandidates_;

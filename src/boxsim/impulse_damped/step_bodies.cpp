@@ -37,7 +37,7 @@ void StepBodies::build(const World& world, const Vec3& gravityStep, double dt, d
     slowReach[i] = exactReach * body.halfExtents.minCoeff();
     const bool fastNow = !body.immovable &&
                          passReach(body.v, body.omega, gravityStep, dt, halfDiagonal[i]) >
-                             exactReach * body.halfExtents.minCoeff();
+                             slowReach[i];
     // With an anchor a body fast now is anchored where the first pass predicts it, and is
     // slow while the passes' predictions stay near there; a slow one stays anchored where it
     // stands.

@@ -268,6 +268,26 @@ void StepCandidates::grow(const World& world, const StepBodies& bodies,
   std::inplace_merge(grownKeys_.begin(), grownKeys_.begin() + grown, grownKeys_.end());
 }
 
+void StepCandidates::indexByBody(std::size_t n) {
+  if (byBodySweep_ == sweeps_ && byBodyCount_ == candidates_.size() &&
+      byBodyStart_.size() == n + 1)
+    return;
+  byBodyStart_.assign(n + 1, 0);
+  for (const Candidate& c : candidates_) {
+    ++byBodyStart_[static_cast<std::size_t>(c.a) + 1];
+    ++byBodyStart_[static_cast<std::size_t>(c.b) + 1];
+  }
+  for (std::size_t i = 0; i < n; ++i) byBodyStart_[i + 1] += byBodyStart_[i];
+  byBody_.resize(static_cast<std::size_t>(byBodyStart_[n]));
+  byBodyFill_.assign(byBodyStart_.begin(), byBodyStart_.end() - 1);
+  for (std::size_t k = 0; k < candidates_.size(); ++k)
+    for (const int body : {candidates_[k].a, candidates_[k].b})
+      byBody_[static_cast<std::size_t>(byBodyFill_[static_cast<std::size_t>(body)]++)] =
+          static_cast<int>(k);
+  byBodySweep_ = sweeps_;
+  byBodyCount_ = candidates_.size();
+}
+
 bool StepCandidates::pairsAt(const World& world, double margin,
                              std::vector<std::pair<int, int>>& pairs) const {
   if (!(margin <= sweepMargin_) || sweptLo_.size() != world.bodies.size()) return false;

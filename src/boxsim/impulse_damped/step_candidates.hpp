@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -80,6 +81,16 @@ class StepCandidates {
   /// The sweep's pairs in increasing (a, b) order, then those grow() added since, in the order
   /// it added them.
   std::vector<Candidate>& candidates() { return candidates_; }
+  /// Lists each body's candidates for ofBody(), unless listed already for these candidates
+  /// (the same sweep and count); `n` bodies.
+  void indexByBody(std::size_t n);
+  /// Body i's candidates, as indices into candidates() in increasing order, as indexByBody()
+  /// last listed them.
+  std::span<const int> ofBody(int i) const {
+    const auto first = static_cast<std::size_t>(byBodyStart_[static_cast<std::size_t>(i)]);
+    const auto last = static_cast<std::size_t>(byBodyStart_[static_cast<std::size_t>(i) + 1]);
+    return {byBody_.data() + first, last - first};
+  }
   /// Whether body i is in at least one candidate pair.
   bool hasCandidate(int i) const { return hasCandidate_[i] != 0; }
   /// Whether grow() added pairs since the last sweep (the candidates are then out of order).
@@ -135,6 +146,13 @@ class StepCandidates {
   std::vector<std::uint64_t> sweptStamp_;       ///< per body: a new stamp each time they are set
   SweptIndex index_;                            ///< sweptLo_, sweptHi_ sorted (grow)
   std::vector<char> hasCandidate_;              ///< per body: in at least one candidate pair
+  /// indexByBody(): body i's candidates are byBody_[byBodyStart_[i] .. byBodyStart_[i + 1]),
+  /// listed for the sweep byBodySweep_ with byBodyCount_ candidates.
+  std::vector<int> byBody_;
+  std::vector<int> byBodyStart_;
+  std::vector<int> byBodyFill_;  ///< indexByBody's cursors
+  std::uint64_t byBodySweep_ = 0;
+  std::size_t byBodyCount_ = 0;
   std::vector<char> isOutgrown_;                ///< per body, in grow(): among the outgrown
   std::vector<std::pair<int, int>> found_;      ///< grow()'s new pairs
   SweepAndPrune sweepAndPrune_;                 ///< the sweep's working lists
