@@ -251,6 +251,39 @@ TEST_CASE("The 15-axis depth agrees with brute-force corner projections on 1000 
   CHECK(separated > 100);
 }
 
+TEST_CASE("The best face axis is the least corner-projected depth over the six face axes, and the "
+          "full test's answer whenever that is a face",
+          "[collision][sat][reference]") {
+  testing::SeededRandom random(20261129);
+  int edges = 0;
+  for (int trial = 0; trial < 1000; ++trial) {
+    const Obb a{random.vector(-1, 1), random.rotation().toRotationMatrix(), random.vector(0.1, 1.0)};
+    const Obb b{random.vector(-1, 1), random.rotation().toRotationMatrix(), random.vector(0.1, 1.0)};
+    double least = 1e300;
+    for (int i = 0; i < 3; ++i)
+      least = std::min({least, bruteDepth(a, b, a.axes.col(i)), bruteDepth(a, b, b.axes.col(i))});
+    const SeparatingAxisResult face = bestFaceAxis(a, b);
+    const SeparatingAxisResult sat = separatingAxisTest(a, b);
+    INFO("trial " << trial << " face " << face.depth << " brute " << least);
+    CHECK(face.kind != AxisKind::EdgeEdge);
+    CHECK(face.normal.dot(b.center - a.center) >= 0.0);
+    CHECK(face.depth == Approx(bruteDepth(a, b, face.normal)).margin(1e-12));
+    // Near ties go to the larger face, within the tie width (1e-9 of the boxes' size).
+    CHECK(face.depth == Approx(least).margin(1e-9 * 4.0));
+    CHECK(face.intersecting == (face.depth > 0.0));
+    if (sat.kind == AxisKind::EdgeEdge) {
+      ++edges;
+      continue;
+    }
+    CHECK(sameBits(face.depth, sat.depth));
+    CHECK(sameBits(face.normal, sat.normal));
+    CHECK(face.kind == sat.kind);
+    CHECK(face.indexA == sat.indexA);
+    CHECK(face.indexB == sat.indexB);
+  }
+  CHECK(edges > 50);  // pairs whose test chose an edge axis, where the face is the test's alone
+}
+
 TEST_CASE("Leaving out the edge axes that lose to the face changes no bit of the answer",
           "[collision][sat]") {
   // SeparatingAxisParams::skipLosingEdgeAxes leaves most edge axes out, many of them from the

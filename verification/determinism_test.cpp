@@ -430,30 +430,34 @@ TEST_CASE("Impulse and damped give the same bits on any number of threads: COLLI
   }
 }
 
-TEST_CASE("With the predicted anchor damped integration gives the same bits on any number of "
-          "threads and run after run",
+TEST_CASE("With the predicted anchor or edge corners damped integration gives the same bits on "
+          "any number of threads and run after run",
           "[impulse_damped][determinism][threads]") {
   // ImpulseParams::predictedAnchor: the bodies fast at a step's start are cached where its
-  // first pass predicts them; the fast clump, whose cubes are such bodies at every step, and the
-  // clump with Coulomb friction, each pass shared among the threads as above.
+  // first pass predicts them; ImpulseParams::edgeCorners: an edge-edge pair keeps its face's
+  // corners. The fast clump, whose cubes are such bodies at every step, and the clump with
+  // Coulomb friction, each pass shared among the threads as above.
   const int steps = static_cast<int>(std::max(40L, testing::scaledCount(120)));
-  for (const World& start : {fastClump(), frictionalClump()}) {
-    std::vector<double> damped[4];
-    const int threadCounts[4] = {1, 1, 2, 3};
-    for (int t = 0; t < 4; ++t) {
-      DampedIntegrationParams params;
-      params.impulse.predictedAnchor = true;
-      params.impulse.threads = threadCounts[t];
-      params.impulse.parallelContacts = 0;
-      params.impulse.parallelNarrowPhases = 0;
-      DampedIntegrationStepper stepper(params);
-      World world = start;
-      for (int k = 0; k < steps; ++k) {
-        stepper.step(world, 1.0 / 60.0);
-        appendStates(world, damped[t]);
+  for (const bool corners : {false, true}) {
+    for (const World& start : {fastClump(), frictionalClump()}) {
+      std::vector<double> damped[4];
+      const int threadCounts[4] = {1, 1, 2, 3};
+      for (int t = 0; t < 4; ++t) {
+        DampedIntegrationParams params;
+        params.impulse.predictedAnchor = !corners;
+        params.impulse.edgeCorners = corners;
+        params.impulse.threads = threadCounts[t];
+        params.impulse.parallelContacts = 0;
+        params.impulse.parallelNarrowPhases = 0;
+        DampedIntegrationStepper stepper(params);
+        World world = start;
+        for (int k = 0; k < steps; ++k) {
+          stepper.step(world, 1.0 / 60.0);
+          appendStates(world, damped[t]);
+        }
       }
+      for (int t = 1; t < 4; ++t) CHECK(sameBits(damped[0], damped[t]));
     }
-    for (int t = 1; t < 4; ++t) CHECK(sameBits(damped[0], damped[t]));
   }
 }
 

@@ -57,7 +57,9 @@ class BoxsimEngine : public PeerEngine {
   /// "damped+supported"), in "+anchor": the slow pairs found where the first pass predicts the
   /// bodies fast at the step's start (ImpulseParams::predictedAnchor, "damped+anchor"), in
   /// "+exact_edges": edge-edge pairs gathered exactly in every pass
-  /// (ImpulseParams::exactEdgePairs, "damped+exact_edges"), and
+  /// (ImpulseParams::exactEdgePairs, "damped+exact_edges"), in "+corners": an edge-edge pair's
+  /// corners of its best face kept beside its point (ImpulseParams::edgeCorners,
+  /// "damped+corners"), and
   /// in "+shared_work": the work its threads would share measured (sharedWork()); the suffixes
   /// in any order.
   explicit BoxsimEngine(std::string engine) {
@@ -72,7 +74,7 @@ class BoxsimEngine : public PeerEngine {
                  underLoad = strip("+under_load"), threads = strip("+threads2"),
                  shared = strip("+shared_work"), impact = strip("+impact"),
                  supported = strip("+supported"), anchor = strip("+anchor"),
-                 exactEdges = strip("+exact_edges");
+                 exactEdges = strip("+exact_edges"), corners = strip("+corners");
       if (chatter) options_.chatterDetection = true;
       if (friction) friction_ = true;
       if (underLoad) options_.geometricStability = GeometricStabilityMode::UnderLoad;
@@ -82,8 +84,9 @@ class BoxsimEngine : public PeerEngine {
       if (supported) options_.dampSupportedOnly = true;
       if (anchor) options_.predictedAnchor = true;
       if (exactEdges) options_.exactEdgePairs = true;
+      if (corners) options_.edgeCorners = true;
       stripped = chatter || friction || underLoad || threads || shared || impact || supported ||
-                 anchor || exactEdges;
+                 anchor || exactEdges || corners;
     }
     const std::size_t slash = engine.find('/');
     method_ = engine.substr(0, slash);
@@ -101,6 +104,7 @@ class BoxsimEngine : public PeerEngine {
            (options_.impactPasses.value_or(0) > 0 ? " impact" : "") +
            (options_.predictedAnchor.value_or(false) ? " anchor" : "") +
            (options_.exactEdgePairs.value_or(false) ? " exact edges" : "") +
+           (options_.edgeCorners.value_or(false) ? " corners" : "") +
            (options_.threads.value_or(1) > 1 ? " " + std::to_string(*options_.threads) + " threads"
                                              : "");
   }
@@ -113,7 +117,7 @@ class BoxsimEngine : public PeerEngine {
           (key == "threads" && value != "1") || (key == "impact_passes" && value != "0") ||
           (key == "damp_supported_only" && value == "on") ||
           (key == "predicted_anchor" && value == "on") ||
-          (key == "exact_edge_pairs" && value == "on"))
+          (key == "exact_edge_pairs" && value == "on") || (key == "edge_corners" && value == "on"))
         text += (text.empty() ? "" : ", ") + key + " " + value;
     return (text.empty() ? "defaults" : text) +
            (friction_ ? ", Coulomb friction as the peers (patch friction at each contact's centroid)"

@@ -26,6 +26,7 @@ void refuseOptions(const std::string& method, const TechniqueOptions& options,
       {!takesImpulseOptions && options.threads.has_value(), "threads"},
       {!takesImpulseOptions && options.predictedAnchor.has_value(), "predicted anchor"},
       {!takesImpulseOptions && options.exactEdgePairs.has_value(), "exact edge pairs"},
+      {!takesImpulseOptions && options.edgeCorners.has_value(), "edge corners"},
       {options.sleep.has_value(), "sleep"},
       {options.chatterDetection.has_value(), "chatter detection"},
       {options.dampSupportedOnly.has_value(), "damp supported only"},
@@ -85,6 +86,7 @@ std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueO
     if (options.threads) params.impulse.threads = *options.threads;
     if (options.predictedAnchor) params.impulse.predictedAnchor = *options.predictedAnchor;
     if (options.exactEdgePairs) params.impulse.exactEdgePairs = *options.exactEdgePairs;
+    if (options.edgeCorners) params.impulse.edgeCorners = *options.edgeCorners;
     if (options.integrator) params.impulse.integrator = *options.integrator;
     return std::make_unique<ImpulseStepper>(params);
   }
@@ -95,6 +97,7 @@ std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueO
     if (options.threads) params.impulse.threads = *options.threads;
     if (options.predictedAnchor) params.impulse.predictedAnchor = *options.predictedAnchor;
     if (options.exactEdgePairs) params.impulse.exactEdgePairs = *options.exactEdgePairs;
+    if (options.edgeCorners) params.impulse.edgeCorners = *options.edgeCorners;
     applyGeometricStability(options, params.useGeometricStability, params.geometricStability);
     if (options.sleep) params.sleep.enabled = *options.sleep;
     if (options.chatterDetection) params.sleep.chatterDetection = *options.chatterDetection;

@@ -46,6 +46,8 @@ struct TechniqueOptions {
   std::optional<bool> predictedAnchor;
   /// ImpulseParams::exactEdgePairs of impulse and damped; empty: default (off).
   std::optional<bool> exactEdgePairs;
+  /// ImpulseParams::edgeCorners of impulse and damped; empty: default (off).
+  std::optional<bool> edgeCorners;
   /// Collision passes damped integration may add while a pass still stops an impact
   /// (DampedIntegrationParams::impactPasses, >= 0); empty: default (0, A.2 as written).
   std::optional<int> impactPasses;

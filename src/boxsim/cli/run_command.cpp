@@ -36,6 +36,7 @@ struct RunArgs {
   std::optional<bool> continuousCollision;
   std::optional<bool> predictedAnchor;
   std::optional<bool> exactEdgePairs;
+  std::optional<bool> edgeCorners;
   std::optional<int> impactPasses;  // empty: the method's default (0)
   std::string broadPhase;     // empty: the scene's choice
   std::optional<unsigned long> plausibilitySeed;
@@ -101,6 +102,7 @@ TechniqueOptions techniqueOptions(const RunArgs& args) {
   options.continuousCollision = args.continuousCollision;
   options.predictedAnchor = args.predictedAnchor;
   options.exactEdgePairs = args.exactEdgePairs;
+  options.edgeCorners = args.edgeCorners;
   options.impactPasses = args.impactPasses;
   options.plausibilitySeed = args.plausibilitySeed;
   options.threads = args.threads;
@@ -204,6 +206,12 @@ void addRunCommand(CLI::App& app) {
                   "edge to edge at the step's start exactly in every pass instead of predicting "
                   "its points (a small turn brings another corner into contact): on, off "
                   "(default)")
+      ->check(CLI::IsMember({"on", "off"}));
+  cmd->add_option("--edge-corners", args->edgeCorners,
+                  "Once-per-step gathering of impulse and damped: a pair that touches edge to "
+                  "edge at the step's start also keeps the corners of its best face, predicted "
+                  "in every pass as its point is, so that the corners a small turn brings "
+                  "down are not missed: on, off (default)")
       ->check(CLI::IsMember({"on", "off"}));
   cmd->add_option("--geometric-stability", args->geometricStability,
                   "Bodies that gravity and frictionless contact cannot move (analytic: left out "

@@ -425,6 +425,19 @@ SeparatingAxisResult separatingAxisTest(const Obb& a, const Obb& b,
   return testAxes<false>(a, b, params, 0.0);
 }
 
+SeparatingAxisResult bestFaceAxis(const Obb& a, const Obb& b, const SeparatingAxisParams& params) {
+  // The face part of testAxes, by the same expressions, so the face is the one it weighs.
+  const Vec3 D = b.center - a.center;
+  Mat3 C;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) C(i, j) = a.axes.col(i).dot(b.axes.col(j));
+  const AxisCandidate face = bestFace(a, b, faceDepths(a, b, D, C.cwiseAbs()),
+                                      faceTieWidth(a, b, params));
+  SeparatingAxisResult result = faceResult(face);
+  result.intersecting = face.depth > 0.0;
+  return result;
+}
+
 SeparatingAxisResult separatingAxisTestWithin(const Obb& a, const Obb& b, double margin,
                                               const SeparatingAxisParams& params) {
   // NaN or a negative margin: no shortcut, the full test.

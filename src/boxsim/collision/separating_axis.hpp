@@ -79,6 +79,15 @@ SeparatingAxisResult separatingAxisTest(const Obb& a, const Obb& b,
 SeparatingAxisResult separatingAxisTestWithin(const Obb& a, const Obb& b, double margin,
                                               const SeparatingAxisParams& params = {});
 
+/// The best of the 6 face axes of boxes A and B as separatingAxisTest weighs them (least
+/// depth, near ties to the larger face, then the lower box), whatever the edge axes say: its
+/// depth (m; > 0 overlapping along it), unit normal from A to B, kind (FaceA or FaceB) and
+/// indices; intersecting is depth > 0 along this axis alone. For a pair whose test chose an
+/// edge axis, the face a small turn may bring flush (clipContact of this result gives the
+/// corners that would then touch; SlowPairCache).
+SeparatingAxisResult bestFaceAxis(const Obb& a, const Obb& b,
+                                  const SeparatingAxisParams& params = {});
+
 /// A one-axis shortcut of separatingAxisTest for a pair tested before (temporal coherence, as
 /// in Gottschalk, Lin and Manocha's OBBTree, 1996, and most engines' cached separating axes):
 /// the depth along the axis `axis` named (its kind, indexA and indexB; typically the answer

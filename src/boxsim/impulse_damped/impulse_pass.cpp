@@ -410,6 +410,7 @@ std::map<std::string, std::string> impulseParameters(const ImpulseParams& params
           {"pair_reach", params.pairReach ? "on" : "off"},
           {"predicted_anchor", params.predictedAnchor ? "on" : "off"},
           {"exact_edge_pairs", params.exactEdgePairs ? "on" : "off"},
+          {"edge_corners", params.edgeCorners ? "on" : "off"},
           {"common_lever_point", params.commonLeverPoint ? "on" : "off"},
           {"integrator", integratorName(params.integrator)},
           {"threads", std::to_string(params.threads)}};

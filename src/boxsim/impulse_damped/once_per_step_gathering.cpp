@@ -16,7 +16,7 @@ namespace boxsim {
 OncePerStepGathering::OncePerStepGathering(const ImpulseParams& params)
     : params_(params),
       candidates_(params.slowWidening),
-      slowPairs_(params.pairReach),
+      slowPairs_(params.pairReach, params.edgeCorners),
       kept_(params.keepNarrowPhases) {
   setParallelWork(nullptr);
 }

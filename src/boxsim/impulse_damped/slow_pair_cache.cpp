@@ -8,6 +8,7 @@
 #include "boxsim/collision/broad_phase.hpp"
 #include "boxsim/collision/contact_manifold.hpp"
 #include "boxsim/collision/obb.hpp"
+#include "boxsim/collision/separating_axis.hpp"
 
 namespace boxsim {
 
@@ -17,6 +18,7 @@ void SlowPairCache::clear() {
   predicted_.clear();
   points_.clear();
   exactManifolds_.clear();
+  alternates_.clear();
 }
 
 bool SlowPairCache::wanted(const World& world, const StepBodies& bodies, int i, int j,
@@ -51,8 +53,6 @@ bool SlowPairCache::wanted(const World& world, const StepBodies& bodies, int i, 
 int SlowPairCache::add(const World& world, const StepBodies& bodies, int i, int j,
                        double pairMargin, const ContactManifold& manifold,
                        ContactNormalTracker& normals) {
-  const RigidBody& bodyI = world.bodies[i];
-  const RigidBody& bodyJ = world.bodies[j];
   // Closer than the margin along every axis, yet no point: boxes passing corner by corner.
   // The pair stays, with no points, and gets the exact narrow phase every pass.
   if (manifold.depth <= -pairMargin) return -1;
@@ -65,12 +65,22 @@ int SlowPairCache::add(const World& world, const StepBodies& bodies, int i, int 
   ContactManifold& m = pair.manifold;
   m.a = i;
   m.b = j;
-  const Vec3& xa = bodyI.s.x;
-  const Vec3& xb = bodyJ.s.x;
   // The normal model's choice now; its face is remembered only in the passes the pair touches.
   const ImpulseContact found = normals.contactOf(world, m, false);
-  PairReach reach{i, j, m.count};
+  PairReach& reach = reaches_.emplace_back();
   PredictedPair& predicted = predicted_.emplace_back();
+  keepPoints(world, m, i, j, found, predicted, reach);
+  if (edgeCorners_ && m.kind == AxisKind::EdgeEdge && m.count > 0)
+    addAlternate(world, predicted, i, j, pairMargin, normals);
+  return static_cast<int>(pairs_.size()) - 1;
+}
+
+void SlowPairCache::keepPoints(const World& world, const ContactManifold& m, int i, int j,
+                               const ImpulseContact& found, PredictedPair& predicted,
+                               PairReach& reach) {
+  const Vec3& xa = world.bodies[i].s.x;
+  const Vec3& xb = world.bodies[j].s.x;
+  reach = PairReach{i, j, m.count};
   predicted.normal = m.normal;
   predicted.contactNormal = found.normal;
   predicted.friction = found.friction;
@@ -87,8 +97,36 @@ int SlowPairCache::add(const World& world, const StepBodies& bodies, int i, int 
     reach.leverA = std::max(reach.leverA, ra.norm());
     reach.leverB = std::max(reach.leverB, rb.norm());
   }
-  reaches_.push_back(reach);
-  return static_cast<int>(pairs_.size()) - 1;
+}
+
+void SlowPairCache::addAlternate(const World& world, PredictedPair& pair, int i, int j,
+                                 double pairMargin, ContactNormalTracker& normals) {
+  const Obb a = Obb::of(world.bodies[i]), b = Obb::of(world.bodies[j]);
+  ContactManifold face = manifoldWithin(clipContact(a, b, bestFaceAxis(a, b)), pairMargin);
+  if (face.count == 0) return;
+  face.a = i;
+  face.b = j;
+  // At most one a pair: kept as long as the pairs' list, so that it grows only when that does.
+  if (alternates_.size() == alternates_.capacity()) alternates_.reserve(pairs_.capacity());
+  pair.alternate = static_cast<int>(alternates_.size());
+  Alternate& alternate = alternates_.emplace_back();
+  alternate.manifold = face;
+  // Nearly flush (the edge axis within about 8° of the face's normal): the corners first.
+  alternate.first = std::abs(face.normal.dot(pair.normal)) > kFlushCosine;
+  keepPoints(world, face, i, j, normals.contactOf(world, face, false), alternate.predicted,
+             alternate.reach);
+}
+
+bool SlowPairCache::alternateContact(const World& world, const StepBodies& bodies, std::size_t k,
+                                     double dt, double margin, ContactNormalTracker& normals,
+                                     ImpulseContact& contact) {
+  Alternate& alternate = alternates_[static_cast<std::size_t>(predicted_[k].alternate)];
+  if (!mayTouch(bodies, alternate.reach, margin) ||
+      !predictedContact(world, bodies, alternate.predicted, alternate.reach, dt, margin, contact))
+    return false;
+  if (!alternate.predicted.remembered) normals.remember(world, alternate.manifold);
+  alternate.predicted.remembered = true;
+  return true;
 }
 
 bool SlowPairCache::mayTouch(const StepBodies& bodies, const PairReach& reach, double margin) {
@@ -111,10 +149,9 @@ bool SlowPairCache::mayTouch(const StepBodies& bodies, const PairReach& reach, d
          linear * linear;
 }
 
-bool SlowPairCache::predictedContact(const World& world, const StepBodies& bodies, std::size_t k,
-                                     const PairReach& reach, double dt, double margin,
-                                     ImpulseContact& contact) const {
-  const PredictedPair& pair = predicted_[k];
+bool SlowPairCache::predictedContact(const World& world, const StepBodies& bodies,
+                                     const PredictedPair& pair, const PairReach& reach, double dt,
+                                     double margin, ImpulseContact& contact) const {
   const CachedPoint* points = points_.data() + pair.first;
   const RigidBody& a = world.bodies[reach.a];
   const RigidBody& b = world.bodies[reach.b];

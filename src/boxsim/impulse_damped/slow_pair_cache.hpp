@@ -39,8 +39,10 @@ struct PairReach {
 class SlowPairCache {
  public:
   /// `pairReach`: ImpulseParams::pairReach, whether pairs with a fast body that move together
-  /// are cached too.
-  explicit SlowPairCache(bool pairReach = true) : pairReach_(pairReach) {}
+  /// are cached too; `edgeCorners`: ImpulseParams::edgeCorners, whether an edge-edge pair keeps
+  /// the corners of its best face beside its point (Alternate).
+  explicit SlowPairCache(bool pairReach = true, bool edgeCorners = false)
+      : pairReach_(pairReach), edgeCorners_(edgeCorners) {}
 
   /// Forgets every cached pair.
   void clear();
@@ -67,8 +69,8 @@ class SlowPairCache {
   bool predictedTogether(const StepBodies& bodies, const PairReach& reach) const {
     return reach.count > 0 && pairReach_ && bodies.movingTogether(reach.a, reach.b);
   }
-  /// Cached pair k's contact in this pass, from its predicted points or, with none to predict
-  /// from, from the narrow phase where its slow bodies stand (the same in every pass of the
+  /// Cached pair k's contact in this pass, from its predicted points (an edge-edge pair's, or
+  /// its corners', Alternate) or, with none to predict from, from the narrow phase where its slow bodies stand (the same in every pass of the
   /// step); false when none is within `margin` (m). With a predicted anchor
   /// (StepBodies::anchored) `world` is the bodies at their anchors (the cache's poses). Remembers its face in the normal model
   /// once while the pair stays slow. A narrow phase runs through `kept`.
@@ -77,7 +79,11 @@ class SlowPairCache {
                    ContactNormalTracker& normals, KeptNarrowPhase& kept, ImpulseContact& contact);
   /// Cached pair k is gathered as written in this pass (one of its bodies turned fast): what
   /// it remembered of its face comes after anything remembered before.
-  void forgetFace(std::size_t k) { predicted_[k].remembered = false; }
+  void forgetFace(std::size_t k) {
+    predicted_[k].remembered = false;
+    if (predicted_[k].alternate >= 0)
+      alternates_[static_cast<std::size_t>(predicted_[k].alternate)].predicted.remembered = false;
+  }
 
  private:
   /// One manifold point as a pass reads it: its predicted depth is its depth plus a linear
@@ -104,7 +110,30 @@ class SlowPairCache {
     /// reads no more cache lines than a frictionless one.
     std::int8_t patchCount = 0;
     std::array<std::int8_t, 4> patchOrder{};  ///< see patchCount
+    /// An edge-edge pair's corners of its best face (Alternate), or -1: none.
+    int alternate = -1;
   };
+  /// With ImpulseParams::edgeCorners, the corners of an edge-edge pair's best face, a second
+  /// set of points with a normal of its own. An edge-edge manifold has one point, a material
+  /// point of each edge, and says nothing of the corners a small relative turn brings down:
+  /// the face axis (bestFaceAxis) clipped within the pair's margin gives the incident face's
+  /// corners. Each pass takes one of the two contacts, the first of them that has a point
+  /// within the margin: the edge point first, as the narrow phase chose it, unless the pair is
+  /// nearly flush (its edge axis within about 8° of the face's normal, kFlushCosine), where the
+  /// narrow phase's choice of edge or face rests on a few per cent of depth (its edge bias) and
+  /// the corners are what the boxes rest on. The corners first for every pair, or only when
+  /// the edge point finds none, each missed contacts that the narrow phase at every pass'
+  /// poses finds (contact_gathering_test, the settling pile), and the edge point first for
+  /// nearly flush pairs too kept the shot frictional pyramid of 10 from sleeping: it switched
+  /// a resting pair between the two contacts from pass to pass.
+  struct Alternate {
+    PredictedPair predicted;   ///< its normal, contact normal, friction, points (alternate -1)
+    PairReach reach;           ///< its bodies, points, deepest and levers
+    ContactManifold manifold;  ///< the face clip (its face is what the normal model remembers)
+    bool first = false;        ///< tried before the edge point (nearly flush)
+  };
+  /// |n_edge · n_face| above which an edge-edge pair counts as nearly flush (cos 8.1°).
+  static constexpr double kFlushCosine = 0.99;
   /// One cached pair: what only the normal model and the narrow phase of a pair with no points
   /// read of it.
   struct CachedPair {
@@ -121,18 +150,32 @@ class SlowPairCache {
   /// Whether a point of the cached pair `reach` may come within `margin` (m) in this pass:
   /// false only when predictedContact would find none.
   static bool mayTouch(const StepBodies& bodies, const PairReach& reach, double margin);
-  /// The Taylor-predicted contact of cached pair k (`reach`, its PredictedPair and points);
+  /// The Taylor-predicted contact of the points of `pair` (`reach` its bodies and reach);
   /// false when no point is within `margin` (m).
-  bool predictedContact(const World& world, const StepBodies& bodies, std::size_t k,
+  bool predictedContact(const World& world, const StepBodies& bodies, const PredictedPair& pair,
                         const PairReach& reach, double dt, double margin,
                         ImpulseContact& contact) const;
+  /// Cached pair k's contact from its alternate corners (Alternate) in a pass where its edge
+  /// point found none: as passContact, remembering the face of the corners' clip.
+  bool alternateContact(const World& world, const StepBodies& bodies, std::size_t k, double dt,
+                        double margin, ContactNormalTracker& normals, ImpulseContact& contact);
+  /// Keeps the corners of cached pair `pair`'s best face within `pairMargin` (m) beside its
+  /// edge-edge manifold, when there are any (Alternate).
+  void addAlternate(const World& world, PredictedPair& pair, int i, int j, double pairMargin,
+                    ContactNormalTracker& normals);
+  /// Writes the predicted pair and reach of manifold `m` (bodies i, j) with the normal model's
+  /// contact `found`, its points appended to points_.
+  void keepPoints(const World& world, const ContactManifold& m, int i, int j,
+                  const ImpulseContact& found, PredictedPair& predicted, PairReach& reach);
 
   bool pairReach_;
+  bool edgeCorners_;
   std::vector<CachedPair> pairs_;
   std::vector<PairReach> reaches_;  ///< per entry of pairs_, in its order
   std::vector<PredictedPair> predicted_;  ///< per entry of pairs_, in its order
   std::vector<CachedPoint> points_;  ///< the pairs' points, pair after pair (PredictedPair::first)
   std::vector<ContactManifold> exactManifolds_;  ///< the pairs' narrow phases (CachedPair::exact)
+  std::vector<Alternate> alternates_;  ///< the edge-edge pairs' face corners (Alternate)
 };
 
 // Defined here, inlined into the merge of every pass (mergeSlowPairs), which asks it for each
@@ -143,12 +186,18 @@ bool SlowPairCache::passContact(const World& world, const StepBodies& bodies, st
                                 ContactNormalTracker& normals, KeptNarrowPhase& kept,
                                 ImpulseContact& contact) {
   const PairReach& reach = reaches_[k];
-  // Too far apart for any point to come within the margin: no contact, as predictedContact
-  // would find, without reading the points.
-  if (reach.count > 0 && !mayTouch(bodies, reach, margin)) return false;
   bool& remembered = predicted_[k].remembered;
   if (reach.count > 0) {
-    if (!predictedContact(world, bodies, k, reach, dt, margin, contact)) return false;
+    // Too far apart for any point to come within the margin: no contact, as predictedContact
+    // would find, without reading the points.
+    const int alt = predicted_[k].alternate;
+    if (alt >= 0 && alternates_[static_cast<std::size_t>(alt)].first &&
+        alternateContact(world, bodies, k, dt, margin, normals, contact))
+      return true;
+    if (!mayTouch(bodies, reach, margin) ||
+        !predictedContact(world, bodies, predicted_[k], reach, dt, margin, contact))
+      return alt >= 0 && !alternates_[static_cast<std::size_t>(alt)].first &&
+             alternateContact(world, bodies, k, dt, margin, normals, contact);
     // The bodies have not moved since the cache was built: its manifold names the face, the
     // same in every pass, so remembering it once is remembering it every pass.
     if (!remembered) normals.remember(world, pairs_[k].manifold);
