@@ -35,7 +35,8 @@
 /// clump of bench/peers, at e = 0.9 and 0, times ten steps from 1.5 s, when its lowest layers
 /// land. Each figure is the mean over its window, not a median over steps. The cases ending in
 /// _2threads are the dense ones on two threads (ImpulseParams::threads); those ending in
-/// _anchor run with the predicted anchor (ImpulseParams::predictedAnchor).
+/// _anchor run with the predicted anchor (ImpulseParams::predictedAnchor), those ending in
+/// _corners with edge corners (ImpulseParams::edgeCorners).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -212,11 +213,13 @@ struct TimedCase {
   }
 };
 
-DampedIntegrationStepper dampedStepper(bool sleeping, int threads = 1, bool anchor = false) {
+DampedIntegrationStepper dampedStepper(bool sleeping, int threads = 1, bool anchor = false,
+                                       bool corners = false) {
   DampedIntegrationParams params;
   params.sleep.enabled = sleeping;
   params.impulse.threads = threads;
   params.impulse.predictedAnchor = anchor;
+  params.impulse.edgeCorners = corners;
   return DampedIntegrationStepper(params);
 }
 
@@ -310,6 +313,16 @@ void registerAll() {
       anchored.name += "_sleeping_anchor";
       anchored.aim.clear();
       registerCase("BM_DampedStep", anchored, dampedStepper(true, 1, true), true);
+    }
+  // Edge corners (ImpulseParams::edgeCorners, off by default) on the piles, where edge-edge
+  // pairs rest: what keeping their face corners costs a step.
+  for (const Case& c : damped)
+    if (c.name == "pile343_settling" || c.name == "clump1000_e0_pile" ||
+        c.name == "pile343_settling_mu") {
+      Case cornered = c;
+      cornered.name += "_sleeping_corners";
+      cornered.aim.clear();
+      registerCase("BM_DampedStep", cornered, dampedStepper(true, 1, false, true), true);
     }
 
   // The plain impulse step has no damping (\thesis{§5.3}), so its stacks need not come to
