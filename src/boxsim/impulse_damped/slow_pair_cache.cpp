@@ -71,7 +71,7 @@ int SlowPairCache::add(const World& world, const StepBodies& bodies, int i, int 
   PredictedPair& predicted = predicted_.emplace_back();
   keepPoints(world, m, i, j, found, predicted, reach);
   if (edgeCorners_ && m.kind == AxisKind::EdgeEdge && m.count > 0)
-    addAlternate(world, predicted, i, j, pairMargin, normals);
+    addAlternate(world, predicted, i, j, pairMargin);
   return static_cast<int>(pairs_.size()) - 1;
 }
 
@@ -100,27 +100,47 @@ void SlowPairCache::keepPoints(const World& world, const ContactManifold& m, int
 }
 
 void SlowPairCache::addAlternate(const World& world, PredictedPair& pair, int i, int j,
-                                 double pairMargin, ContactNormalTracker& normals) {
-  const Obb a = Obb::of(world.bodies[i]), b = Obb::of(world.bodies[j]);
-  ContactManifold face = manifoldWithin(clipContact(a, b, bestFaceAxis(a, b)), pairMargin);
-  if (face.count == 0) return;
-  face.a = i;
-  face.b = j;
+                                 double pairMargin) {
   // At most one a pair: kept as long as the pairs' list, so that it grows only when that does.
   if (alternates_.size() == alternates_.capacity()) alternates_.reserve(pairs_.capacity());
   pair.alternate = static_cast<int>(alternates_.size());
   Alternate& alternate = alternates_.emplace_back();
-  alternate.manifold = face;
+  alternate.face = bestFaceAxis(Obb::of(world.bodies[i]), Obb::of(world.bodies[j]));
+  alternate.clipMargin = pairMargin;
   // Nearly flush (the edge axis within about 8° of the face's normal): the corners first.
-  alternate.first = std::abs(face.normal.dot(pair.normal)) > kFlushCosine;
+  alternate.first = std::abs(alternate.face.normal.dot(pair.normal)) > kFlushCosine;
+}
+
+void SlowPairCache::buildAlternate(const World& world, std::size_t k, Alternate& alternate,
+                                   ContactNormalTracker& normals) {
+  const int i = reaches_[k].a, j = reaches_[k].b;
+  const Obb a = Obb::of(world.bodies[i]), b = Obb::of(world.bodies[j]);
+  ContactManifold& face = alternate.manifold;
+  face = manifoldWithin(clipContact(a, b, alternate.face), alternate.clipMargin);
+  face.a = i;
+  face.b = j;
   keepPoints(world, face, i, j, normals.contactOf(world, face, false), alternate.predicted,
              alternate.reach);
+  alternate.built = true;
 }
 
 bool SlowPairCache::alternateContact(const World& world, const StepBodies& bodies, std::size_t k,
                                      double dt, double margin, ContactNormalTracker& normals,
                                      ImpulseContact& contact) {
   Alternate& alternate = alternates_[static_cast<std::size_t>(predicted_[k].alternate)];
+  // Boxes apart along the edge axis by s are apart by s everywhere, and a corner of the clip,
+  // which lies within the reference face's outline, is as far from the other box as from its
+  // face's plane: no corner is deeper than the edge point. A pass moves a point of a body by at
+  // most what mayTouch allows for a lever of the body's half diagonal, so when the edge point
+  // could not come within the margin with such levers, no corner can.
+  if (!alternate.built || alternate.reach.count > 0) {
+    PairReach bound = reaches_[k];
+    bound.leverA = bodies.halfDiagonal[static_cast<std::size_t>(bound.a)];
+    bound.leverB = bodies.halfDiagonal[static_cast<std::size_t>(bound.b)];
+    if (!mayTouch(bodies, bound, margin)) return false;
+  }
+  if (!alternate.built) buildAlternate(world, k, alternate, normals);
+  if (alternate.reach.count == 0) return false;
   if (!mayTouch(bodies, alternate.reach, margin) ||
       !predictedContact(world, bodies, alternate.predicted, alternate.reach, dt, margin, contact))
     return false;

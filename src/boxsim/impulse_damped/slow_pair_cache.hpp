@@ -126,11 +126,16 @@ class SlowPairCache {
   /// poses finds (contact_gathering_test, the settling pile), and the edge point first for
   /// nearly flush pairs too kept the shot frictional pyramid of 10 from sleeping: it switched
   /// a resting pair between the two contacts from pass to pass.
+  /// The face's clip is made when a pass first asks for the corners (most edge-edge pairs of a
+  /// heap stay apart, or keep their edge point, and never do).
   struct Alternate {
-    PredictedPair predicted;   ///< its normal, contact normal, friction, points (alternate -1)
-    PairReach reach;           ///< its bodies, points, deepest and levers
-    ContactManifold manifold;  ///< the face clip (its face is what the normal model remembers)
-    bool first = false;        ///< tried before the edge point (nearly flush)
+    SeparatingAxisResult face;  ///< the best face axis at the cache's poses
+    double clipMargin = 0.0;    ///< m, the pair's margin (SlowPairCache::add)
+    bool first = false;         ///< tried before the edge point (nearly flush)
+    bool built = false;         ///< the fields below are made
+    PredictedPair predicted;    ///< its normal, contact normal, friction, points (alternate -1)
+    PairReach reach;            ///< its bodies, points, deepest and levers
+    ContactManifold manifold;   ///< the face clip (its face is what the normal model remembers)
   };
   /// |n_edge · n_face| above which an edge-edge pair counts as nearly flush (cos 8.1°).
   static constexpr double kFlushCosine = 0.99;
@@ -159,10 +164,13 @@ class SlowPairCache {
   /// point found none: as passContact, remembering the face of the corners' clip.
   bool alternateContact(const World& world, const StepBodies& bodies, std::size_t k, double dt,
                         double margin, ContactNormalTracker& normals, ImpulseContact& contact);
-  /// Keeps the corners of cached pair `pair`'s best face within `pairMargin` (m) beside its
-  /// edge-edge manifold, when there are any (Alternate).
-  void addAlternate(const World& world, PredictedPair& pair, int i, int j, double pairMargin,
-                    ContactNormalTracker& normals);
+  /// Gives cached pair `pair` (bodies i, j) the corners of its best face within `pairMargin`
+  /// (m) beside its edge-edge manifold (Alternate), to be clipped when first asked for.
+  void addAlternate(const World& world, PredictedPair& pair, int i, int j, double pairMargin);
+  /// Makes alternate `alternate` of cached pair k: its face's clip, its points and the normal
+  /// model's contact, where the cache's bodies stand (`world`).
+  void buildAlternate(const World& world, std::size_t k, Alternate& alternate,
+                      ContactNormalTracker& normals);
   /// Writes the predicted pair and reach of manifold `m` (bodies i, j) with the normal model's
   /// contact `found`, its points appended to points_.
   void keepPoints(const World& world, const ContactManifold& m, int i, int j,
