@@ -117,7 +117,8 @@ class BoxsimEngine : public PeerEngine {
           (key == "threads" && value != "1") || (key == "impact_passes" && value != "0") ||
           (key == "damp_supported_only" && value == "on") ||
           (key == "predicted_anchor" && value == "on") ||
-          (key == "exact_edge_pairs" && value == "on") || (key == "edge_corners" && value == "on"))
+          (key == "exact_edge_pairs" && value == "on") ||
+          (key == "edge_corners" && value == "on"))
         text += (text.empty() ? "" : ", ") + key + " " + value;
     return (text.empty() ? "defaults" : text) +
            (friction_ ? ", Coulomb friction as the peers (patch friction at each contact's centroid)"

@@ -131,12 +131,14 @@ bool SlowPairCache::alternateContact(const World& world, const StepBodies& bodie
   // Boxes apart along the edge axis by s are apart by s everywhere, and a corner of the clip,
   // which lies within the reference face's outline, is as far from the other box as from its
   // face's plane: no corner is deeper than the edge point. A pass moves a point of a body by at
-  // most what mayTouch allows for a lever of the body's half diagonal, so when the edge point
-  // could not come within the margin with such levers, no corner can.
+  // most what mayTouch allows for its lever, and a corner (midway between the incident face and
+  // the reference face's plane, within the clip's margin) lies within the body's half diagonal
+  // plus that margin of either centre: when the edge point could not come within the margin
+  // with such levers, no corner can.
   if (!alternate.built || alternate.reach.count > 0) {
     PairReach bound = reaches_[k];
-    bound.leverA = bodies.halfDiagonal[static_cast<std::size_t>(bound.a)];
-    bound.leverB = bodies.halfDiagonal[static_cast<std::size_t>(bound.b)];
+    bound.leverA = bodies.halfDiagonal[static_cast<std::size_t>(bound.a)] + alternate.clipMargin;
+    bound.leverB = bodies.halfDiagonal[static_cast<std::size_t>(bound.b)] + alternate.clipMargin;
     if (!mayTouch(bodies, bound, margin)) return false;
   }
   if (!alternate.built) buildAlternate(world, k, alternate, normals);

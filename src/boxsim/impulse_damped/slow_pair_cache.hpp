@@ -70,10 +70,11 @@ class SlowPairCache {
     return reach.count > 0 && pairReach_ && bodies.movingTogether(reach.a, reach.b);
   }
   /// Cached pair k's contact in this pass, from its predicted points (an edge-edge pair's, or
-  /// its corners', Alternate) or, with none to predict from, from the narrow phase where its slow bodies stand (the same in every pass of the
-  /// step); false when none is within `margin` (m). With a predicted anchor
-  /// (StepBodies::anchored) `world` is the bodies at their anchors (the cache's poses). Remembers its face in the normal model
-  /// once while the pair stays slow. A narrow phase runs through `kept`.
+  /// its corners', Alternate) or, with none to predict from, from the narrow phase where its
+  /// slow bodies stand (the same in every pass of the step); false when none is within
+  /// `margin` (m). With a predicted anchor (StepBodies::anchored) `world` is the bodies at
+  /// their anchors (the cache's poses). Remembers its face in the normal model once while the
+  /// pair stays slow. A narrow phase runs through `kept`.
   bool passContact(const World& world, const StepBodies& bodies, std::size_t k, double dt,
                    double margin,
                    ContactNormalTracker& normals, KeptNarrowPhase& kept, ImpulseContact& contact);
