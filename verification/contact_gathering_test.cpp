@@ -351,6 +351,10 @@ TEST_CASE("On a settling pile the cache misses contacts of edge-edge pairs, and 
     bool exactEdges, corners, anchor;
     long compared = 0, missed = 0;
     double deepest = 0.0;  // m, the deepest contact missed
+    long matched = 0;         // contacts both gatherings find
+    double depthError = 0.0;  // m, the sum of their |depth - the narrow phase's depth|
+    long extra = 0;           // overlapping contacts the narrow phase does not find
+    double meanDepthError() const { return depthError / static_cast<double>(matched); }
   };
   std::vector<Mode> modes = {{"default", false, false, false},
                              {"exact edge pairs", true, false, false},
@@ -379,6 +383,16 @@ TEST_CASE("On a settling pile the cache misses contacts of edge-edge pairs, and 
         const auto found =
             contactsOf(cached.begin(look, kDt, GravityMode::VelocityPlusGravity, margin));
         cached.end(look);
+        // How deep the contacts both find are: the cache's depth against the narrow phase's.
+        for (const auto& [pair, depth] : found) {
+          const auto exactDepth = reference.find(pair);
+          if (exactDepth == reference.end()) {
+            mode.extra += depth > 0.0;
+            continue;
+          }
+          ++mode.matched;
+          mode.depthError += std::abs(depth - exactDepth->second);
+        }
         for (const auto& [pair, depth] : reference)
           if (depth > 1e-3) {
             ++mode.compared;
@@ -399,7 +413,10 @@ TEST_CASE("On a settling pile the cache misses contacts of edge-edge pairs, and 
   }
   for (const Mode& mode : modes) {
     INFO(mode.name << ": " << mode.compared << " contacts deeper than 1 mm compared, "
-                   << mode.missed << " missed, the deepest " << mode.deepest << " m");
+                   << mode.missed << " missed, the deepest " << mode.deepest << " m; "
+                   << mode.matched << " found by both, their depths off by "
+                   << mode.meanDepthError() << " m on average; " << mode.extra
+                   << " overlapping contacts the narrow phase does not find");
     CHECK(mode.compared > 1000);
     // The finding: the cache as it stands misses edge-edge pairs' corners.
     if (!mode.exactEdges && !mode.corners) CHECK(mode.missed > 0);
@@ -407,11 +424,13 @@ TEST_CASE("On a settling pile the cache misses contacts of edge-edge pairs, and 
   // Gathered exactly, none is missed. With the corners kept (predicted like the points, not
   // found), a few are, against the same gathering without them: at most a twentieth as many
   // (measured: 7 of 588, and 18 of 675 under the anchor), none half as deep as its deepest
-  // (1.5 mm of 6.8, 1.8 of 9.7).
+  // (1.5 mm of 6.8, 1.8 of 9.7), and the depths of the contacts both find are a quarter as far
+  // off at most (measured: 8.7 µm on average against 77, 22 against 133 under the anchor).
   CHECK(modes[1].missed == 0);
   for (const auto& [with, without] : {std::pair{2, 0}, std::pair{4, 3}}) {
     INFO(modes[with].name << " against " << modes[without].name);
     CHECK(20 * modes[with].missed <= modes[without].missed);
     CHECK(modes[with].deepest < 0.5 * modes[without].deepest);
+    CHECK(modes[with].meanDepthError() < 0.25 * modes[without].meanDepthError());
   }
 }
