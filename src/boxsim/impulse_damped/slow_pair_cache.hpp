@@ -122,11 +122,11 @@ class SlowPairCache {
   /// within the margin: the edge point first, as the narrow phase chose it, unless the pair is
   /// nearly flush (its edge axis within about 8° of the face's normal, kFlushCosine), where the
   /// narrow phase's choice of edge or face rests on a few per cent of depth (its edge bias) and
-  /// the corners are what the boxes rest on. The corners first for every pair, or only when
-  /// the edge point finds none, each missed contacts that the narrow phase at every pass'
-  /// poses finds (contact_gathering_test, the settling pile), and the edge point first for
-  /// nearly flush pairs too kept the shot frictional pyramid of 10 from sleeping: it switched
-  /// a resting pair between the two contacts from pass to pass.
+  /// the corners are what the boxes rest on. Measured on the settling pile against the narrow
+  /// phase at every pass' poses (contact_gathering_test): corners kept only for pairs not
+  /// nearly flush miss nearly as many contacts as none at all, for the misses are nearly flush
+  /// pairs; the edge point first for those too kept the shot frictional pyramid of 10 from
+  /// sleeping, a resting pair switching between the two contacts from pass to pass.
   /// The face's clip is made when a pass first asks for the corners (most edge-edge pairs of a
   /// heap stay apart, or keep their edge point, and never do).
   struct Alternate {
@@ -161,8 +161,9 @@ class SlowPairCache {
   bool predictedContact(const World& world, const StepBodies& bodies, const PredictedPair& pair,
                         const PairReach& reach, double dt, double margin,
                         ImpulseContact& contact) const;
-  /// Cached pair k's contact from its alternate corners (Alternate) in a pass where its edge
-  /// point found none: as passContact, remembering the face of the corners' clip.
+  /// Cached pair k's contact from its alternate corners (Alternate), asked before its edge point
+  /// when nearly flush, else after the edge point found none: as passContact, remembering the
+  /// face of the corners' clip; false when no corner comes within `margin` (m).
   bool alternateContact(const World& world, const StepBodies& bodies, std::size_t k, double dt,
                         double margin, ContactNormalTracker& normals, ImpulseContact& contact);
   /// Gives cached pair `pair` (bodies i, j) the corners of its best face within `pairMargin`
