@@ -348,6 +348,16 @@ std::optional<EdgeAxis> bestEdge(const Obb& a, const Obb& b, const Vec3& D, cons
   return edge;
 }
 
+/// C_ij = a_i . b_j, the cosines between the boxes' axes. Written as dot products so that the
+/// swapped call, which computes b_j . a_i, gets the same bits (products commute; the sum runs
+/// in the same order).
+[[gnu::always_inline]] inline Mat3 axisCosines(const Obb& a, const Obb& b) {
+  Mat3 C;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) C(i, j) = a.axes.col(i).dot(b.axes.col(j));
+  return C;
+}
+
 /// The test's result from its best face (AxisCandidate), marked not intersecting.
 SeparatingAxisResult faceResult(const AxisCandidate& face) {
   return {false, face.depth, face.normal, face.kind, face.indexA, face.indexB};
@@ -361,11 +371,7 @@ SeparatingAxisResult testAxes(const Obb& a, const Obb& b, const SeparatingAxisPa
                               [[maybe_unused]] double margin) {
   const Vec3 D = b.center - a.center;
 
-  // C_ij = a_i . b_j. Written as dot products so that the swapped call, which computes
-  // b_j . a_i, gets the same bits (products commute; the sum runs in the same order).
-  Mat3 C;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) C(i, j) = a.axes.col(i).dot(b.axes.col(j));
+  const Mat3 C = axisCosines(a, b);
   const Mat3 absC = C.cwiseAbs();
   // Eberly's robustness trick, for the edge axes only: the face depths stay exact, so exactly
   // touching faces report depth 0, not -1e-12.
@@ -428,10 +434,7 @@ SeparatingAxisResult separatingAxisTest(const Obb& a, const Obb& b,
 SeparatingAxisResult bestFaceAxis(const Obb& a, const Obb& b, const SeparatingAxisParams& params) {
   // The face part of testAxes, by the same expressions, so the face is the one it weighs.
   const Vec3 D = b.center - a.center;
-  Mat3 C;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) C(i, j) = a.axes.col(i).dot(b.axes.col(j));
-  const AxisCandidate face = bestFace(a, b, faceDepths(a, b, D, C.cwiseAbs()),
+  const AxisCandidate face = bestFace(a, b, faceDepths(a, b, D, axisCosines(a, b).cwiseAbs()),
                                       faceTieWidth(a, b, params));
   SeparatingAxisResult result = faceResult(face);
   result.intersecting = face.depth > 0.0;
