@@ -959,6 +959,58 @@ TEST_CASE("With continuous collision detection a cube at 150 and 200 m/s stops o
   }
 }
 
+TEST_CASE("A frictionless stack of 20 cubes, each 2 cm off the one under it: as written the passes "
+          "leave the column falling and FIX holds it up by positions alone, stability under load "
+          "lets it rest",
+          "[impulse_damped][geometric_stability]") {
+  // scenes/stack20_offset.json: twenty unit cubes of 1 kg, each 2 cm along x off the one under
+  // it (0, 2, 4 cm, repeating), dropped from 2 mm gaps, e = 0, no friction; sleeping off, 3 s. Every centre lies over its
+  // support, but the corners of every other face overhang, so §5.4's rule (SETGEOMETRICALLYSTABLE:
+  // all four bottom corners on stable bodies) marks none above the first overhang. The passes
+  // then cannot stop the column in a step (each stops it a box at a time, restitution ramp and
+  // all), each cube ends the step falling a little faster than the one under it, and FIX lifts
+  // it back by its position alone: the velocities grow by g Δt a step until what the passes take
+  // balances it. Stability under load (§6.3.1, load_stability.hpp) marks the whole stack, so
+  // COLLIDE L11-L14 hold every cube.
+  const double gdt = 9.81 * kDt;
+  const auto run = [&](bool underLoad, double& topVelocity, double& fastest, double& drift) {
+    World world = loadScene(std::string(BOXSIM_SOURCE_DIR) +
+                            "/chapters/impulse_damped/scenes/stack20_offset.json")
+                      .world;
+    DampedIntegrationParams params;
+    params.sleep.enabled = false;
+    params.geometricStability.underLoad = underLoad;
+    DampedIntegrationStepper stepper(params);
+    for (int step = 0; step < 180; ++step) stepper.step(world, kDt);
+    topVelocity = world.bodies.back().v.y();
+    fastest = 0.0;
+    drift = 0.0;
+    for (std::size_t k = 1; k < world.bodies.size(); ++k) {
+      const RigidBody& cube = world.bodies[k];
+      fastest = std::max({fastest, cube.v.norm(), cube.omega.norm() * 0.5});
+      // Where it rests: on the cubes under it, gaps closed.
+      drift = std::max(drift, std::abs(cube.s.x.y() - (0.5 + static_cast<double>(k - 1))));
+    }
+  };
+  double topAsWritten = 0.0, fastestAsWritten = 0.0, driftAsWritten = 0.0;
+  double topUnderLoad = 0.0, fastestUnderLoad = 0.0, driftUnderLoad = 0.0;
+  run(false, topAsWritten, fastestAsWritten, driftAsWritten);
+  run(true, topUnderLoad, fastestUnderLoad, driftUnderLoad);
+  INFO("as written: top cube's v_y " << topAsWritten << " m/s, fastest point " << fastestAsWritten
+                                     << " m/s, heights off their rest by up to " << driftAsWritten
+                                     << " m; under load: " << topUnderLoad << ", "
+                                     << fastestUnderLoad << ", " << driftUnderLoad);
+  // Each of the 20 contacts may be left as deep as FIX's slop (10⁻³ ℓ, ℓ = 0.5 m).
+  const double slops = 20 * FixContactParams{}.slop * 0.5;
+  // As written: the top cube ends its steps falling at several steps' worth of gravity, yet
+  // stands where it rests, within the slops: FIX lifts back in position what it fell.
+  CHECK(topAsWritten < -4.0 * gdt);
+  CHECK(driftAsWritten < slops);
+  // Under load: every cube at rest (no point moving at a hundredth of g Δt), where it rests.
+  CHECK(fastestUnderLoad < 0.01 * gdt);
+  CHECK(driftUnderLoad < slops);
+}
+
 TEST_CASE("With impact passes a column of ten cubes landing at 17 m/s stops in the boxes' own "
           "gaps, with the thesis' five collision passes the upper boxes fall into the lower",
           "[impulse_damped][impact]") {
