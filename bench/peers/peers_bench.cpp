@@ -97,6 +97,8 @@ std::vector<SceneSpec> comparisonScenes() {
   add("pyramid10_shot", 8.0, [] { return fromFile("pyramid10_shot"); }, {0.9}, {true, false});
   add("pyramid20_shot", 8.0, [] { return fromFile("pyramid20_shot"); }, {0.9}, {true, false});
   add("pile343", 8.0, [] { return fromFile("pile343"); }, {0.0, 0.9});
+  // A stack that §5.4's rule does not hold (its faces overhang) and its loads do.
+  add("stack20_offset", 8.0, [] { return fromFile("stack20_offset"); }, {0.0});
   add("clump100", kClumpSeconds, [] { return clump(100); }, {0.9, 0.5, 0.0});
   add("clump1000", kClumpSeconds, [] { return clump(1000); }, {0.9, 0.5, 0.0});
   add("clump10000", kClumpSeconds, [] { return clump(10000); }, {0.9, 0.0});
