@@ -1050,9 +1050,10 @@ TEST_CASE("A frictionless stack of 20 cubes, each 2 cm off the one under it: as 
           "lets it rest",
           "[impulse_damped][geometric_stability]") {
   // scenes/stack20_offset.json: twenty unit cubes of 1 kg, each 2 cm along x off the one under
-  // it (0, 2, 4 cm, repeating), dropped from 2 mm gaps, e = 0, no friction; sleeping off, 3 s. Every centre lies over its
-  // support, but the corners of every other face overhang, so §5.4's rule (SETGEOMETRICALLYSTABLE:
-  // all four bottom corners on stable bodies) marks none above the first overhang. The passes
+  // it (0, 2, 4 cm, repeating), dropped from 2 mm gaps, e = 0, no friction; sleeping off, 3 s.
+  // Every centre lies over its support, but every bottom face overhangs the top of the cube
+  // under it on one side, so §5.4's rule (SETGEOMETRICALLYSTABLE: all four bottom corners on
+  // stable bodies) marks none above the bottom cube. The passes
   // then cannot stop the column in a step (each stops it a box at a time, restitution ramp and
   // all), each cube ends the step falling a little faster than the one under it, and FIX lifts
   // it back by its position alone: the velocities grow by g Δt a step until what the passes take
