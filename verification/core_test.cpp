@@ -6,10 +6,12 @@
 #include <cstdlib>
 #include <limits>
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "boxsim/core/gravity_frame.hpp"
 #include "boxsim/core/integrator.hpp"
 #include "boxsim/core/math.hpp"
 #include "boxsim/core/newtonian_impulse.hpp"
@@ -302,4 +304,62 @@ TEST_CASE("Numbers are written as the shortest text that reads back to the same 
   }
   CHECK(row == expected);
   CHECK(shortestText(std::numeric_limits<double>::quiet_NaN()).find("nan") != std::string::npos);
+}
+
+TEST_CASE("The turn of a gravity frame takes gravity to -y in any direction, and a frame hands back "
+          "the bodies it did not move bit for bit",
+          "[core][gravity_frame]") {
+  // Directions: the z-up world, straight up (the half turn), a slant, and nearly down.
+  const Vec3 gravities[] = {Vec3(0.0, 0.0, -9.81), Vec3(0.0, 9.81, 0.0), Vec3(3.0, -2.0, 5.0),
+                            Vec3(1e-9, -9.81, 0.0)};
+  for (const Vec3& g : gravities) {
+    const Quat turn = turnGravityDown(g);
+    INFO("gravity " << g.transpose());
+    // A unit quaternion's rotation of a unit vector: a few ulp of 1.
+    CHECK(std::abs(turn.norm() - 1.0) < 1e-15);
+    CHECK((turn * g.normalized() - Vec3(0.0, -1.0, 0.0)).norm() < 1e-15);
+  }
+  CHECK(gravityPointsDown(Vec3(0.0, -9.81, 0.0)));
+  CHECK(gravityPointsDown(Vec3::Zero()));
+  CHECK_FALSE(gravityPointsDown(Vec3(0.0, 9.81, 0.0)));
+  CHECK_FALSE(gravityPointsDown(Vec3(1e-300, -9.81, 0.0)));
+  CHECK_THROWS_AS(turnGravityDown(Vec3::Zero()), std::invalid_argument);
+
+  // A floor and a falling box under gravity along -z. The frame turns them so that gravity is
+  // (0, -9.81, 0) and x, P and L turn with them; moving the box there and leaving writes the
+  // box back turned back, and the floor, which did not move, keeps the caller's bits.
+  World world;
+  world.gravity = Vec3(0.0, 0.0, -9.81);
+  world.add(RigidBody::immovableBox(Vec3(5.0, 5.0, 0.5)), "floor");
+  RigidBody box = RigidBody::box(Vec3(0.5, 0.25, 0.5), 2.0);
+  box.s.x = Vec3(0.3, -0.2, 2.0);
+  box.s.q = axisAngleDegrees(Vec3(1.0, 2.0, 3.0), 30.0);
+  box.s.P = Vec3(1.0, 0.0, -4.0);
+  box.s.L = Vec3(0.0, 0.5, 0.0);
+  box.updateDerived();
+  world.add(box, "box");
+  world.bodies[0].s.x = Vec3(0.1, 0.2, -0.5);
+  world.bodies[0].updateDerived();
+  const World before = world;
+  GravityFrame frame;
+  World& turned = frame.enter(world);
+  CHECK(turned.gravity == Vec3(0.0, -9.81, 0.0));
+  // Heights along gravity's opposite are the turned world's y.
+  CHECK(turned.bodies[1].s.x.y() == Approx(2.0).margin(1e-15));
+  CHECK(turned.bodies[1].s.P.y() == Approx(-4.0).margin(1e-15));
+  // A step there: the box moves along +x of the turned world (the caller's +x too).
+  turned.bodies[1].s.x += Vec3(0.5, 0.0, 0.0);
+  frame.leave(world);
+  CHECK((world.bodies[1].s.x - (before.bodies[1].s.x + Vec3(0.5, 0.0, 0.0))).norm() < 1e-15);
+  CHECK(world.bodies[1].s.q.angularDistance(before.bodies[1].s.q) < 1e-15);
+  CHECK((world.bodies[1].s.P - before.bodies[1].s.P).norm() < 1e-15);
+  CHECK((world.bodies[1].s.L - before.bodies[1].s.L).norm() < 1e-15);
+  CHECK(world.bodies[1].R.isApprox(world.bodies[1].s.q.toRotationMatrix(), 0.0));
+  CHECK(world.bodies[0].s == before.bodies[0].s);
+  // The next enter keeps the turned box as it was stepped (the caller did not change it), and
+  // turns in a box the caller moved.
+  const Vec3 kept = turned.bodies[1].s.x;
+  CHECK(frame.enter(world).bodies[1].s.x == kept);
+  world.bodies[1].s.x.z() += 1.0;
+  CHECK(frame.enter(world).bodies[1].s.x.y() == Approx(kept.y() + 1.0).margin(1e-14));
 }

@@ -1363,3 +1363,119 @@ TEST_CASE("FIXCONTACTCONSTRAINTS lifts the body the contact normal points up to,
   CHECK(lift.norm() <= overlap + params.nudge * 0.1 * 1.01);
   CHECK(lift.y() > 0.0);
 }
+
+namespace {
+/// A y-up world on an immovable floor (top face y = 0): a tower of three unit cubes, two cubes
+/// stacked 2 cm off each other, a cube sliding at 3 m/s with mu = 0.5 on a rough floor patch,
+/// and a cube dropped from 1 m tilted 10 degrees.
+World gravityScene() {
+  World world;
+  world.restitution = 0.0;
+  RigidBody floor = RigidBody::immovableBox(Vec3(8.0, 0.5, 8.0));
+  floor.s.x = Vec3(0.0, -0.5, 0.0);
+  floor.friction = {0.5, 0.5};
+  floor.updateDerived();
+  world.add(floor, "floor");
+  const auto cube = [&world](const Vec3& x, const std::string& name, const Quat& q = Quat::Identity(),
+                             const Vec3& v = Vec3::Zero(), double mu = 0.0) {
+    RigidBody b = RigidBody::box(Vec3::Constant(0.5), 1.0);
+    b.s.x = x;
+    b.s.q = q;
+    b.friction = {mu, mu};
+    b.updateDerived();
+    b.setVelocity(v);
+    world.add(b, name);
+  };
+  for (int k = 0; k < 3; ++k) cube(Vec3(-4.0, 0.5 + k, -4.0), "tower" + std::to_string(k));
+  cube(Vec3(4.0, 0.5, -4.0), "under");
+  cube(Vec3(4.02, 1.5, -4.0), "over");
+  cube(Vec3(-5.0, 0.5, 4.0), "slider", Quat::Identity(), Vec3(3.0, 0.0, 0.0), 0.5);
+  cube(Vec3(3.0, 1.5, 3.0), "dropped", axisAngleDegrees(Vec3(1.0, 0.0, 1.0), 10.0));
+  return world;
+}
+
+/// `world` turned a quarter turn about x, y to z (x, y, z to x, -z, y), as a z-up user builds
+/// it: positions, momenta and gravity exactly, orientations by the quarter turn's quaternion.
+World zUp(const World& world) {
+  const auto turn = [](const Vec3& v) { return Vec3(v.x(), -v.z(), v.y()); };
+  const Quat quarter = axisAngleDegrees(Vec3::UnitX(), 90.0);
+  World turned = world;
+  turned.gravity = turn(world.gravity);
+  for (RigidBody& b : turned.bodies) {
+    b.s.x = turn(b.s.x);
+    b.s.q = (quarter * b.s.q).normalized();
+    b.s.P = turn(b.s.P);
+    b.s.L = turn(b.s.L);
+    b.updateDerived();
+  }
+  return turned;
+}
+}  // namespace
+
+TEST_CASE("Damped integration steps a world whose gravity points along -z as it steps the same "
+          "world built y-up",
+          "[impulse_damped][gravity_frame]") {
+  // A.2 reads up as +y (DAMPENOBJECTS, FIXCONTACTCONSTRAINTS, SETGEOMETRICALLYSTABLE). Stepped
+  // as it is, this scene under gravity along -z lost its tower: the cubes sank 0.9 m into each
+  // other in 5 s. Turned so that gravity points along -y, it is the y-up scene up to rounding,
+  // so every body ends where the y-up run puts it, turned, well within the contact slop
+  // (FixContactParams::slop, 1e-3 of the half side), and as many sleep.
+  World upright = gravityScene();
+  World turned = zUp(upright);
+  REQUIRE(turned.gravity == Vec3(0.0, 0.0, -9.81));
+  DampedIntegrationStepper uprightStepper, turnedStepper;
+  StepStats uprightStats, turnedStats;
+  for (int step = 0; step < 240; ++step) {
+    uprightStats = uprightStepper.step(upright, kDt);
+    turnedStats = turnedStepper.step(turned, kDt);
+  }
+  const World expected = zUp(upright);
+  const double slop = FixContactParams{}.slop * 0.5;
+  double farthest = 0.0, turnedMost = 0.0;
+  for (std::size_t i = 0; i < turned.bodies.size(); ++i) {
+    farthest = std::max(farthest, (turned.bodies[i].s.x - expected.bodies[i].s.x).norm());
+    turnedMost = std::max(turnedMost, turned.bodies[i].s.q.angularDistance(expected.bodies[i].s.q));
+  }
+  INFO("largest distance from the y-up run " << farthest << " m, turn " << turnedMost << " rad");
+  CHECK(farthest < slop);
+  CHECK(turnedMost < slop);
+  CHECK(turnedStats.sleeping == uprightStats.sleeping);
+  // The tower stands: each cube within the slop of its height on the floor.
+  for (int k = 0; k < 3; ++k) CHECK(std::abs(turned.bodies[1 + k].s.x.z() - (0.5 + k)) < 2.0 * slop);
+  // The slider stopped (mu = 0.5: v^2 / (2 mu g) = 0.92 m) and the floor kept its bits.
+  CHECK(turned.bodies[6].s.x.x() - (-5.0) == Approx(0.92).margin(0.05));
+  CHECK(turned.bodies[0].s == zUp(gravityScene()).bodies[0].s);
+}
+
+TEST_CASE("Damped integration holds boxes against a ceiling under gravity pointing up, and takes "
+          "a box the caller moved between steps",
+          "[impulse_damped][gravity_frame]") {
+  // Gravity along +y: a column of three cubes hangs under an immovable ceiling (its bottom
+  // face at y = 0). Stepped as it was, the column sank 0.39 m into the ceiling in 3 s.
+  World world;
+  world.restitution = 0.0;
+  world.gravity = Vec3(0.0, 9.81, 0.0);
+  RigidBody ceiling = RigidBody::immovableBox(Vec3(5.0, 0.5, 5.0));
+  ceiling.s.x = Vec3(0.0, 0.5, 0.0);
+  ceiling.updateDerived();
+  world.add(ceiling, "ceiling");
+  for (int k = 0; k < 3; ++k) {
+    RigidBody b = RigidBody::box(Vec3::Constant(0.5), 1.0);
+    b.s.x = Vec3(0.0, -0.5 - k, 0.0);
+    b.updateDerived();
+    world.add(b, "hanging" + std::to_string(k));
+  }
+  DampedIntegrationStepper stepper;
+  const double slop = FixContactParams{}.slop * 0.5;
+  for (int step = 0; step < 60; ++step) stepper.step(world, kDt);
+  // The caller pulls the last cube 1 m down; it rises back onto the column under gravity.
+  world.bodies[3].s.x.y() -= 1.0;
+  world.bodies[3].updateDerived();
+  StepStats stats;
+  for (int step = 0; step < 180; ++step) stats = stepper.step(world, kDt);
+  for (int k = 0; k < 3; ++k) {
+    INFO("cube " << k << " at y = " << world.bodies[1 + k].s.x.y());
+    CHECK(std::abs(world.bodies[1 + k].s.x.y() - (-0.5 - k)) < 2.0 * slop);
+  }
+  CHECK(stats.sleeping == 3);
+}

@@ -93,6 +93,16 @@ std::map<std::string, std::string> DampedIntegrationStepper::parameters() const 
 }
 
 StepStats DampedIntegrationStepper::step(World& world, double dt) {
+  // A.2 takes +y as up: a world whose gravity points elsewhere is stepped turned so that it
+  // points along -y (core/gravity_frame.hpp), and handed back turned back.
+  if (gravityPointsDown(world.gravity)) return stepUpright(world, dt);
+  World& upright = gravityFrame_.enter(world);
+  const StepStats stats = stepUpright(upright, dt);
+  gravityFrame_.leave(world);
+  return stats;
+}
+
+StepStats DampedIntegrationStepper::stepUpright(World& world, double dt) {
   const ContinuousCollisionParams& ccd = params_.continuousCollision;
   if (!ccd.enabled) return advance(world, dt);
   // DEVIATION(A.2, §3.2): a step in which a fast body would reach another body is split at

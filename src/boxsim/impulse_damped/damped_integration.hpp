@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "boxsim/collision/broad_phase.hpp"
+#include "boxsim/core/gravity_frame.hpp"
 #include "boxsim/core/stepper.hpp"
 #include "boxsim/geometric_stability/geometric_stability.hpp"
 #include "boxsim/impulse_damped/centre_over_support.hpp"
@@ -176,6 +177,10 @@ class DampedIntegrationStepper final : public Stepper {
   /// continuous collision detection on, as several such steps that together cover dt, each
   /// ending at the next time of impact of a fast body (at least dt / maxSubsteps long).
   /// StepStats::sleeping counts the bodies asleep after the step.
+  /// A.2 takes +y as up. A world whose gravity has an x or z part, or points up, is stepped
+  /// turned so that its gravity points along -y and handed back turned back (GravityFrame,
+  /// core/gravity_frame.hpp): the same motion, up to rounding, as the same scene built y-up.
+  /// The flags below (geometricallyStable, asleep) are per body in either case.
   StepStats step(World& world, double dt) override;
   /// The geometric stability of each body found at the end of the last step
   /// (\alg{DAMPEDINTEGRATION L6}); a sleeping body keeps the flag it had when it fell asleep.
@@ -199,7 +204,9 @@ class DampedIntegrationStepper final : public Stepper {
   }
 
  private:
-  /// \alg{DAMPEDINTEGRATION L1-L6} for dt s, as step() without continuous collisions.
+  /// step() for a world whose gravity points down (gravityPointsDown) or is zero.
+  StepStats stepUpright(World& world, double dt);
+  /// \alg{DAMPEDINTEGRATION L1-L6} for dt s, as stepUpright() without continuous collisions.
   StepStats advance(World& world, double dt);
   /// \alg{RESOLVECOLLISIONS} (DAMPEDINTEGRATION L1): the collision passes, with high-speed
   /// collisions perturbed (§4.2) and, with impactPasses, more while a pass still stops an
@@ -257,6 +264,8 @@ class DampedIntegrationStepper final : public Stepper {
   /// The support test of DAMPENOBJECTS, its buffers kept from step to step.
   SupportTest supportTest_;
   Sleeping sleeping_;
+  /// A world whose gravity does not point down, kept turned so that it does (step()).
+  GravityFrame gravityFrame_;
   DampedStepProfile* profile_ = nullptr;  ///< where stage times go, or none
 };
 
