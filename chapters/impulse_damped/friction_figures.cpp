@@ -112,25 +112,31 @@ void figS7FrictionIncline(const std::string& dir) {
 /// Beyond the thesis, the classic incline test: a frictional cube (μ = 0.5) released on inclines
 /// of 0°-60° (every 2.5°), its distance down the slope after 2 s under the plain impulse step and
 /// under damped integration as it runs by default (damping and sleeping on), beside Coulomb's
-/// a = g (sin θ − μ cos θ) stepped as semi-implicit Euler does (0 below atan μ = 26.6°).
+/// a = g (sin θ − μ cos θ) stepped as semi-implicit Euler does (0 below atan μ = 26.6°); and the
+/// same cube frictionless (μ = 0) under damped integration, where the thesis' damping stands in
+/// for friction (§5.3), beside the frictionless law a = g sin θ stepped the same way.
 void figS7FrictionInclineSweep(const std::string& dir) {
   const double mu = 0.5, dt = 1.0 / 60.0;
   const int steps = 120;
   std::string out = header("s7_friction_incline_sweep: a cube with mu = 0.5 released on an incline, distance "
                            "down the slope after 2 s against the incline's angle",
-                           "angle_deg coulomb_m impulse_m damped_m");
+                           "angle_deg coulomb_m impulse_m damped_m frictionless_m damped_frictionless_m");
   for (int tenth = 0; tenth <= 600; tenth += 25) {
     const double degrees = tenth / 10.0;
     const double theta = degrees * kPi / 180.0;
     const double a = std::max(0.0, 9.81 * (std::sin(theta) - mu * std::cos(theta)));
     char buffer[96];
-    std::snprintf(buffer, sizeof buffer, "%.1f %.6e", degrees, a * dt * dt * steps * (steps + 1) / 2.0);
+    const double stepped = dt * dt * steps * (steps + 1) / 2.0;  // s / a after the steps
+    std::snprintf(buffer, sizeof buffer, "%.1f %.6e", degrees, a * stepped);
     out += buffer;
-    for (int kind = 0; kind < 2; ++kind) {
+    // The plain impulse step and damped integration with μ = 0.5, then damped integration
+    // with μ = 0, after the frictionless law.
+    for (int kind = 0; kind < 3; ++kind) {
       World world;
       world.restitution = 0.0;
       Vec3 down;
-      const int box = addIncline(world, degrees, {mu, mu}, &down);
+      const double coefficient = kind < 2 ? mu : 0.0;
+      const int box = addIncline(world, degrees, {coefficient, coefficient}, &down);
       const Vec3 start = world.bodies[box].s.x;
       std::unique_ptr<Stepper> stepper;
       if (kind == 0)
@@ -138,6 +144,10 @@ void figS7FrictionInclineSweep(const std::string& dir) {
       else
         stepper = std::make_unique<DampedIntegrationStepper>();
       for (int k = 1; k <= steps; ++k) stepper->step(world, dt);
+      if (kind == 2) {
+        std::snprintf(buffer, sizeof buffer, " %.6e", 9.81 * std::sin(theta) * stepped);
+        out += buffer;
+      }
       std::snprintf(buffer, sizeof buffer, " %.6e", (world.bodies[box].s.x - start).dot(down));
       out += buffer;
     }
