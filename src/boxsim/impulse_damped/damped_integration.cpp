@@ -24,6 +24,8 @@ DampedIntegrationStepper::DampedIntegrationStepper(const DampedIntegrationParams
   if (params.impactPasses < 0 || !(params.impactReach > 0.0) || !std::isfinite(params.impactReach))
     throw std::invalid_argument(
         "damped: impact passes must be >= 0 and the impact reach a finite number > 0 (units of l)");
+  if (params.shockIterations < 1)
+    throw std::invalid_argument("damped: shock iterations must be >= 1 (1: one visit of each contact)");
   if (params.continuousCollision.maxSubsteps < 1 ||
       !(params.continuousCollision.fastReach > 0.0))
     throw std::invalid_argument(
@@ -44,6 +46,7 @@ std::map<std::string, std::string> DampedIntegrationStepper::parameters() const 
       {"friction_shock_propagation", params_.shockPropagation ? "on" : "off"},
       {"shock_settled_speed_g_dt", shortestText(params_.shockSettledSpeed)},
       {"shock_resting_speed_g_dt", shortestText(params_.shockRestingSpeed)},
+      {"shock_iterations", std::to_string(params_.shockIterations)},
       {"fix_contact_constraints", params_.fixContactConstraints ? "on" : "off"},
       {"geometric_stability", !params_.useGeometricStability            ? "off"
                                   : params_.geometricStability.underLoad ? "under_load"
@@ -227,7 +230,8 @@ StepStats DampedIntegrationStepper::advance(World& world, double dt) {
     const double gdt = world.gravity.norm() * dt;
     stats.events += propagateShockDamped(world, dt, margin, gathering_, stable_,
                                          params_.shockSettledSpeed * gdt,
-                                         params_.shockRestingSpeed * gdt, shockLevels_);
+                                         params_.shockRestingSpeed * gdt, shockLevels_,
+                                         params_.shockIterations);
   }
   clock.lap(&DampedStepProfile::shockSweep);
   // DAMPEDINTEGRATION L3: IntegrateObjectVelocities (sleeping bodies stand immovable and are

@@ -87,7 +87,7 @@ int propagateShock(World& world, double dt, double margin, ContactGathering& gat
 
 int propagateShockDamped(World& world, double dt, double margin, ContactGathering& gathering,
                          const std::vector<char>& stable, double settledSpeed,
-                         double restingSpeed, ShockLevels& levels) {
+                         double restingSpeed, ShockLevels& levels, int iterations) {
   // Every pair of movable bodies that are all geometrically stable sits out (below): with no
   // other movable body, nothing is left to sweep, and no contact need be gathered.
   const auto isStable = [&](int i) {
@@ -103,37 +103,78 @@ int propagateShockDamped(World& world, double dt, double margin, ContactGatherin
   levels.sort(world, contacts);
   const std::vector<int>& level = levels.levels();
   const Vec3 deltaV = gravityVelocity(world, GravityMode::VelocityPlusGravity, dt);
+  // A contact this close to resting is left as it is: the rounding of the impulse that stopped
+  // it, not an approach.
+  const double still = 1e-6 * settledSpeed;
+  std::vector<double>& sums = levels.sums();
+  std::vector<char>& takes = levels.takes();
+  sums.assign(contacts.size(), 0.0);
+  takes.assign(contacts.size(), 0);
+  const auto levelOf = [&](const ImpulseContact& c) { return std::max(level[c.a], level[c.b]); };
   int impulses = 0;
-  for (const ImpulseContact& c : contacts) {
-    RigidBody& a = world.bodies[c.a];
-    RigidBody& b = world.bodies[c.b];
-    // A geometrically stable body's vertical momentum is reset after every COLLIDE (L11-L14): its
-    // support is settled already. A pair of such bodies (or of one and an immovable one) sits out.
-    if ((a.immovable || isStable(c.a)) && (b.immovable || isStable(c.b))) continue;
-    // A pair that approaches faster than a resting one is colliding, and one that approaches
-    // slower than a settled one is settled: both are the passes' business.
-    const double approach = approachSpeed(world, c, GravityMode::VelocityPlusGravity, dt);
-    if (approach > restingSpeed || approach < settledSpeed) continue;
-    // COLLIDE L1-L6: the velocity gravity is about to add, on both bodies.
-    addVelocity(a, deltaV);
-    addVelocity(b, deltaV);
-    // The normal impulse alone, frictionless (see the declaration).
-    double j = 0.0;
-    if (level[c.a] == level[c.b]) {
-      j = applyNewtonianImpulse(a, b, c.ra, c.rb, c.normal, 0.0);
-    } else if (level[c.a] < level[c.b]) {
-      RigidBody fixed = heldCopy(a);
-      j = applyNewtonianImpulse(fixed, b, c.ra, c.rb, c.normal, 0.0);
-    } else {
-      RigidBody fixed = heldCopy(b);
-      j = applyNewtonianImpulse(a, fixed, c.ra, c.rb, c.normal, 0.0);
+  for (std::size_t first = 0; first < contacts.size();) {
+    std::size_t last = first + 1;
+    while (last < contacts.size() && levelOf(contacts[last]) == levelOf(contacts[first])) ++last;
+    for (int visit = 0; visit < iterations; ++visit) {
+      bool changed = false;
+      for (std::size_t k = first; k < last; ++k) {
+        const ImpulseContact& c = contacts[k];
+        RigidBody& a = world.bodies[c.a];
+        RigidBody& b = world.bodies[c.b];
+        if (visit == 0) {
+          // A geometrically stable body's vertical momentum is reset after every COLLIDE
+          // (L11-L14): its support is settled already. A pair of such bodies (or of one and an
+          // immovable one) sits out.
+          if ((a.immovable || isStable(c.a)) && (b.immovable || isStable(c.b))) continue;
+          // A pair that approaches faster than a resting one is colliding, and one that
+          // approaches slower than a settled one is settled: both are the passes' business.
+          const double approach = approachSpeed(world, c, GravityMode::VelocityPlusGravity, dt);
+          if (approach > restingSpeed || approach < settledSpeed) continue;
+          takes[k] = 1;
+        }
+        if (!takes[k]) continue;
+        // COLLIDE L1-L6: the velocity gravity is about to add, on both bodies.
+        addVelocity(a, deltaV);
+        addVelocity(b, deltaV);
+        // The normal impulse alone, frictionless (see the declaration), restitution 0; the lower
+        // body of a contact between levels held fixed.
+        const bool holdA = level[c.a] < level[c.b], holdB = level[c.b] < level[c.a];
+        const RigidBody heldA = holdA ? heldCopy(a) : RigidBody{};
+        const RigidBody heldB = holdB ? heldCopy(b) : RigidBody{};
+        const RigidBody& pushedA = holdA ? heldA : a;
+        const RigidBody& pushedB = holdB ? heldB : b;
+        const double vn = relativeNormalVelocity(pushedA, pushedB, c.ra, c.rb, c.normal);
+        const double inverseMass = pairInverseMass(pushedA, pushedB, c.ra, c.rb, c.normal);
+        double change = 0.0;
+        if (inverseMass > 0.0 && (visit == 0 ? vn < 0.0 : std::abs(vn) > still)) {
+          const double sum = std::max(0.0, sums[k] - vn / inverseMass);
+          change = sum - sums[k];
+          sums[k] = sum;
+        }
+        if (change != 0.0) {
+          changed = true;
+          const Vec3 impulse = change * c.normal;
+          if (!holdA && !a.immovable) {
+            a.s.P -= impulse;
+            a.s.L -= c.ra.cross(impulse);
+            a.updateVelocities();
+          }
+          if (!holdB && !b.immovable) {
+            b.s.P += impulse;
+            b.s.L += c.rb.cross(impulse);
+            b.updateVelocities();
+          }
+        }
+        // COLLIDE L9-L14.
+        addVelocity(a, -deltaV);
+        addVelocity(b, -deltaV);
+        for (int i : {c.a, c.b})
+          if (isStable(i)) holdGeometricallyStable(world.bodies[i]);
+        if (visit == 0 && change > 0.0) ++impulses;
+      }
+      if (!changed) break;
     }
-    // COLLIDE L9-L14.
-    addVelocity(a, -deltaV);
-    addVelocity(b, -deltaV);
-    for (int i : {c.a, c.b})
-      if (isStable(i)) holdGeometricallyStable(world.bodies[i]);
-    if (j > 0.0) ++impulses;
+    first = last;
   }
   gathering.end(world);
   return impulses;

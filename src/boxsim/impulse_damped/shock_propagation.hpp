@@ -27,9 +27,15 @@ class ShockLevels {
   void sort(const World& world, std::vector<ImpulseContact>& contacts);
   /// One level per body, from the last compute.
   const std::vector<int>& levels() const { return level_; }
+  /// propagateShockDamped's working lists, one entry per contact of a sweep: the normal impulse
+  /// it has put into the contact so far (N s), and whether the contact takes part.
+  std::vector<double>& sums() { return sums_; }
+  std::vector<char>& takes() { return takes_; }
 
  private:
   std::vector<int> start_, fill_, neighbours_, level_, queue_;
+  std::vector<double> sums_;
+  std::vector<char> takes_;
 };
 
 /// One sweep of shock propagation at the positions predicted for the end of the step
@@ -54,7 +60,17 @@ int propagateShock(World& world, double dt, double margin, ContactGathering& gat
 /// One sweep up the levels (ShockLevels::sort) at the positions predicted with gravity
 /// (x + Δt (v + g Δt)), each contact under COLLIDE's gravity trick (\alg{COLLIDE L1-L6, L9-L14}),
 /// restitution 0, the lower body of a contact between levels held fixed (a copy with zero
-/// inverse mass). The sweep applies normal impulses alone: friction in it, on any budget, held
+/// inverse mass). Within a level the contacts are visited up to `iterations` times, each
+/// contact's normal impulse accumulated over the visits and kept non-negative (sequential
+/// impulses, Catto, "Iterative Dynamics with Temporal Coherence", GDC 2005): a visit gives the
+/// impulse that stops the contact's approach, or takes back what an earlier visit gave too
+/// much, and the level is done when a visit changes nothing (a contact whose relative normal
+/// velocity is within 1e-6 settledSpeed of zero is left as it is). One visit (iterations 1)
+/// gives each contact its impulse once, in order: a body resting on several held supports was
+/// pushed by each in turn, turned by the first and pushed up by the next more than its weight
+/// asks, and a tower of twelve layers of crossed planks built touching with μ = 0.5 gained
+/// 7.7 J in 0.13 s, its top layer rising by up to 28 mm (DampedIntegrationParams::shockIterations).
+/// The sweep applies normal impulses alone: friction in it, on any budget, held
 /// every box of a tower over the box under it (five cubes on a 20° plank stood, where Coulomb
 /// topples them) and slowed stacks sliding on a plank. A pair whose movable bodies are all
 /// geometrically stable sits out (COLLIDE L11-L14 settles them), and so does a pair whose
@@ -71,6 +87,6 @@ int propagateShock(World& world, double dt, double margin, ContactGathering& gat
 /// \return the number of impulses applied.
 int propagateShockDamped(World& world, double dt, double margin, ContactGathering& gathering,
                          const std::vector<char>& stable, double settledSpeed,
-                         double restingSpeed, ShockLevels& levels);
+                         double restingSpeed, ShockLevels& levels, int iterations = 1);
 
 }  // namespace boxsim
