@@ -785,9 +785,10 @@ TEST_CASE("A tower of twelve layers of crossed planks built touching with fricti
   // on the ground with mu = 0.5 (the blocks game). Nothing is geometrically stable in the first
   // step (no step has classified them yet), so the shock sweep after RESOLVECONTACTS reaches the
   // upper layers, which the passes leave approaching; each plank there rests on three held
-  // planks. Visiting each contact once, the sweep pushed a plank at each support in turn, the
-  // first turning it so that the next pushed harder: the tower gained energy, its top layer
-  // rising by centimetres. With the visits repeated, each contact's impulse accumulated and
+  // planks. Visiting each contact once, the sweep pushed a plank at each support in turn, each
+  // push turning it; the step tilted it into the planks under it and FIXCONTACTCONSTRAINTS
+  // lifted it out: the tower gained energy, its top layer rising by centimetres (with FIX off,
+  // under 0.1 J). With the visits repeated, each contact's impulse accumulated and
   // kept non-negative, the sweep gives each plank what its weight asks: at rest, built exactly
   // touching, the tower's energy stays what it was (up to rounding) and its top stays within
   // the contact slop (FixContactParams::slop, 1e-3 of the planks' smallest half extent).

@@ -78,9 +78,10 @@ struct DampedIntegrationParams {
   double shockRestingSpeed = 2.0;  ///< see shockSettledSpeed
   /// >= 1: the sweep visits each level's contacts up to this many times, their normal impulses
   /// accumulated and kept non-negative, until a visit changes nothing (propagateShockDamped).
-  /// 1: each contact's impulse once, in order, which pushed a body resting on several supports
-  /// up by more than its weight asks (a tower of twelve layers of crossed planks built touching
-  /// with μ = 0.5 gained 7.7 J in its first 0.13 s); 8: that tower and one of eight layers stand
+  /// 1: each contact's impulse once, in order, which left a body resting on several supports
+  /// turning, tilted into them, and lifted out by FIXCONTACTCONSTRAINTS (a tower of twelve
+  /// layers of crossed planks built touching with μ = 0.5 gained 7.7 J in its first 0.13 s);
+  /// 8: that tower and one of eight layers stand
   /// with their energy unchanged, and the same tower dropped layer by layer from 1 cm apart
   /// loses 19 J instead of gaining up to 34 J on the way (impulse chapter, "Coulomb friction").
   int shockIterations = 8;

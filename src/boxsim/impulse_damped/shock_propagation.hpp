@@ -67,9 +67,10 @@ int propagateShock(World& world, double dt, double margin, ContactGathering& gat
 /// much, and the level is done when a visit changes nothing (a contact whose relative normal
 /// velocity is within 1e-6 settledSpeed of zero is left as it is). One visit (iterations 1)
 /// gives each contact its impulse once, in order: a body resting on several held supports was
-/// pushed by each in turn, turned by the first and pushed up by the next more than its weight
-/// asks, and a tower of twelve layers of crossed planks built touching with μ = 0.5 gained
-/// 7.7 J in 0.13 s, its top layer rising by up to 28 mm (DampedIntegrationParams::shockIterations).
+/// pushed at each in turn, each push turning it, and the step tilted it into the body under it,
+/// from which FIXCONTACTCONSTRAINTS lifted it: a tower of twelve layers of crossed planks built
+/// touching with μ = 0.5 gained 7.7 J in 0.13 s, its top layer rising by up to 28 mm (under 0.1 J
+/// with FIXCONTACTCONSTRAINTS off; DampedIntegrationParams::shockIterations).
 /// The sweep applies normal impulses alone: friction in it, on any budget, held
 /// every box of a tower over the box under it (five cubes on a 20° plank stood, where Coulomb
 /// topples them) and slowed stacks sliding on a plank. A pair whose movable bodies are all
