@@ -27,9 +27,11 @@ class ShockLevels {
   void sort(const World& world, std::vector<ImpulseContact>& contacts);
   /// One level per body, from the last compute.
   const std::vector<int>& levels() const { return level_; }
-  /// propagateShockDamped's working lists, one entry per contact of a sweep: the normal impulse
-  /// it has put into the contact so far (N s), and whether the contact takes part.
+  /// propagateShockDamped's working list, one entry per contact of a sweep: the normal impulse
+  /// it has put into the contact so far (N s).
   std::vector<double>& sums() { return sums_; }
+  /// propagateShockDamped's working list, one flag per contact of a sweep: the contact takes
+  /// part (its pair is not settled and approaches within the sweep's bounds).
   std::vector<char>& takes() { return takes_; }
 
  private:
