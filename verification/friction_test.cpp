@@ -684,9 +684,9 @@ TEST_CASE("A frictional pyramid at rest ends its steps at rest: a box its fricti
   // k7, while the snap holds their poses: they never turn, and every step runs all five
   // collision passes. With the deviation they end each step at rest, and the first collision
   // pass, with nothing approaching, is the last (the frictionless pyramid's count). The premise
-  // is measured with the shock sweep visiting each contact once (shockIterations 1), as when
-  // the deviation came: with its visits repeated until they change nothing (the default) the
-  // middle rows get no spin to keep in the first place.
+  // is measured with the shock sweep visiting each contact once (shockIterations 1, the
+  // default): with its visits repeated until they change nothing (8) the middle rows get no
+  // spin to keep in the first place.
   const auto run = [](bool restHeld, int& spinning, int& passes) {
     Scene scene = parseScene(R"({"friction": 0.5, "ground": {"half_size": 20},
         "builders": [{"type": "pyramid", "base": 10, "size": 1.0, "mass": 1.0}]})",
@@ -789,7 +789,8 @@ TEST_CASE("A tower of twelve layers of crossed planks built touching with fricti
   // push turning it; the step tilted it into the planks under it and FIXCONTACTCONSTRAINTS
   // lifted it out: the tower gained energy, its top layer rising by centimetres (with FIX off,
   // under 0.1 J). With the visits repeated, each contact's impulse accumulated and
-  // kept non-negative, the sweep gives each plank what its weight asks: at rest, built exactly
+  // kept non-negative (shockIterations 8, not the default), the sweep gives each plank what its
+  // weight asks: at rest, built exactly
   // touching, the tower's energy stays what it was (up to rounding) and its top stays within
   // the contact slop (FixContactParams::slop, 1e-3 of the planks' smallest half extent).
   const auto energyGain = [](int shockIterations, double& topRise) {
@@ -822,7 +823,7 @@ TEST_CASE("A tower of twelve layers of crossed planks built touching with fricti
   };
   double onceRise = 0.0, repeatedRise = 0.0;
   const double once = energyGain(1, onceRise);
-  const double repeated = energyGain(DampedIntegrationParams{}.shockIterations, repeatedRise);
+  const double repeated = energyGain(8, repeatedRise);
   CAPTURE(once, onceRise, repeated, repeatedRise);
   CHECK(once > 1.0);  // J: the defect, with one visit
   CHECK(onceRise > 0.01);
@@ -845,8 +846,8 @@ TEST_CASE("The block over a hole in a brick wall comes to rest: a held brick on 
   // the rest 0 to 3 bricks ended falling and the median travel stayed at or under 0.9 mm (the
   // mean ran from 0.04 to 20 mm); without it 24 to 78 fell and the median was 3.8-16.6 mm in
   // ten, while in two the wall settled without the rest (no brick falling, 0.4 and 0.7 mm).
-  // Those measures are with the shock sweep visiting each contact once (shockIterations 1);
-  // with its visits repeated until they change nothing (the default) the passes and the sweep
+  // Those measures are with the shock sweep visiting each contact once (shockIterations 1, the
+  // default); with its visits repeated until they change nothing (8) the passes and the sweep
   // leave far fewer bricks falling without the rest too.
   const auto run = [](bool restGrounded, long& falling, double& travel, int shockIterations) {
     Scene scene = loadScene(std::string(BOXSIM_SOURCE_DIR) +
@@ -874,7 +875,7 @@ TEST_CASE("The block over a hole in a brick wall comes to rest: a held brick on 
     std::nth_element(travels.begin(), travels.begin() + travels.size() / 2, travels.end());
     travel = travels[travels.size() / 2];
   };
-  const int visits = DampedIntegrationParams{}.shockIterations;
+  const int visits = 8;
   long fallingWithout = 0, fallingWith = 0, fallingVisited = 0;
   double travelWithout = 0.0, travelWith = 0.0, travelVisited = 0.0;
   run(false, fallingWithout, travelWithout, 1);
