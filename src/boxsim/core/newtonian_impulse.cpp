@@ -23,8 +23,6 @@ double applyNewtonianImpulse(RigidBody& a, RigidBody& b, const Vec3& p, const Ve
   return applyNewtonianImpulse(a, b, Vec3(p - a.s.x), Vec3(p - b.s.x), n, restitution);
 }
 
-namespace {
-/// -jA n on a at lever arm ra and +jB n on b at rb (N s), each unless immovable.
 void applyNormalImpulses(RigidBody& a, RigidBody& b, const Vec3& ra, const Vec3& rb, const Vec3& n,
                          double jA, double jB) {
   if (!a.immovable) {
@@ -40,6 +38,8 @@ void applyNormalImpulses(RigidBody& a, RigidBody& b, const Vec3& ra, const Vec3&
     b.updateVelocities();
   }
 }
+
+namespace {
 
 /// A.2's impulse magnitude j = -(1 + e) v⁻ / k at the contact (N s) into `j`, v⁻ (m/s) into
 /// `vMinus`; false (no impulse) when the pair is not approaching or cannot be pushed (k <= 0).

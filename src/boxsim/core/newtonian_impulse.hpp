@@ -51,6 +51,11 @@ inline RigidBody heldCopy(const RigidBody& body) {
   return held;
 }
 
+/// Applies −jA n to a at lever arm ra and +jB n to b at rb (N s; n unit, from a to b), each
+/// unless immovable, and updates their velocities: the step every normal impulse below ends in.
+void applyNormalImpulses(RigidBody& a, RigidBody& b, const Vec3& ra, const Vec3& rb, const Vec3& n,
+                         double jA, double jB);
+
 /// Applies the frictionless Newtonian impulse j n at world point p (m) along the unit normal n
 /// (pointing from a to b) when the bodies approach there, so that the relative normal velocity
 /// becomes -restitution times what it was (Witkin & Baraff eq. 8-18):

@@ -138,13 +138,14 @@ int propagateShockDamped(World& world, double dt, double margin, ContactGatherin
         addVelocity(b, deltaV);
         // The normal impulse alone, frictionless (see the declaration), restitution 0; the lower
         // body of a contact between levels held fixed.
+        // A held body counts with its velocity and without its inverse mass (heldCopy's terms
+        // of pairInverseMass are zeros).
         const bool holdA = level[c.a] < level[c.b], holdB = level[c.b] < level[c.a];
-        const RigidBody heldA = holdA ? heldCopy(a) : RigidBody{};
-        const RigidBody heldB = holdB ? heldCopy(b) : RigidBody{};
-        const RigidBody& pushedA = holdA ? heldA : a;
-        const RigidBody& pushedB = holdB ? heldB : b;
-        const double vn = relativeNormalVelocity(pushedA, pushedB, c.ra, c.rb, c.normal);
-        const double inverseMass = pairInverseMass(pushedA, pushedB, c.ra, c.rb, c.normal);
+        const double vn = relativeNormalVelocity(a, b, c.ra, c.rb, c.normal);
+        const double inverseMass =
+            holdA   ? b.invMass + rotationalInverseMass(b.Iinv, c.rb, c.normal)
+            : holdB ? a.invMass + rotationalInverseMass(a.Iinv, c.ra, c.normal)
+                    : pairInverseMass(a, b, c.ra, c.rb, c.normal);
         double change = 0.0;
         if (inverseMass > 0.0 && (visit == 0 ? vn < 0.0 : std::abs(vn) > still)) {
           const double sum = std::max(0.0, sums[k] - vn / inverseMass);
@@ -153,16 +154,13 @@ int propagateShockDamped(World& world, double dt, double margin, ContactGatherin
         }
         if (change != 0.0) {
           changed = true;
-          const Vec3 impulse = change * c.normal;
-          if (!holdA && !a.immovable) {
-            a.s.P -= impulse;
-            a.s.L -= c.ra.cross(impulse);
-            a.updateVelocities();
-          }
-          if (!holdB && !b.immovable) {
-            b.s.P += impulse;
-            b.s.L += c.rb.cross(impulse);
-            b.updateVelocities();
+          // A held body's immovable copy takes its part of the impulse, which goes nowhere.
+          if (holdA || holdB) {
+            RigidBody held = heldCopy(holdA ? a : b);
+            applyNormalImpulses(holdA ? held : a, holdB ? held : b, c.ra, c.rb, c.normal, change,
+                                change);
+          } else {
+            applyNormalImpulses(a, b, c.ra, c.rb, c.normal, change, change);
           }
         }
         // COLLIDE L9-L14.
