@@ -1376,20 +1376,15 @@ World gravityScene() {
   floor.friction = {0.5, 0.5};
   floor.updateDerived();
   world.add(floor, "floor");
-  const auto cube = [&world](const Vec3& x, const std::string& name, const Quat& q = Quat::Identity(),
-                             const Vec3& v = Vec3::Zero(), double mu = 0.0) {
-    RigidBody b = RigidBody::box(Vec3::Constant(0.5), 1.0);
-    b.s.x = x;
-    b.s.q = q;
-    b.friction = {mu, mu};
-    b.updateDerived();
-    b.setVelocity(v);
-    world.add(b, name);
+  const auto cube = [&world](const Vec3& x, const std::string& name, const Quat& q = Quat::Identity()) {
+    return static_cast<std::size_t>(addBox(world, name, Vec3::Constant(0.5), x, q));
   };
   for (int k = 0; k < 3; ++k) cube(Vec3(-4.0, 0.5 + k, -4.0), "tower" + std::to_string(k));
   cube(Vec3(4.0, 0.5, -4.0), "under");
   cube(Vec3(4.02, 1.5, -4.0), "over");
-  cube(Vec3(-5.0, 0.5, 4.0), "slider", Quat::Identity(), Vec3(3.0, 0.0, 0.0), 0.5);
+  RigidBody& slider = world.bodies[cube(Vec3(-5.0, 0.5, 4.0), "slider")];
+  slider.friction = {0.5, 0.5};
+  slider.setVelocity(Vec3(3.0, 0.0, 0.0));
   cube(Vec3(3.0, 1.5, 3.0), "dropped", axisAngleDegrees(Vec3(1.0, 0.0, 1.0), 10.0));
   return world;
 }
@@ -1459,12 +1454,8 @@ TEST_CASE("Damped integration holds boxes against a ceiling under gravity pointi
   ceiling.s.x = Vec3(0.0, 0.5, 0.0);
   ceiling.updateDerived();
   world.add(ceiling, "ceiling");
-  for (int k = 0; k < 3; ++k) {
-    RigidBody b = RigidBody::box(Vec3::Constant(0.5), 1.0);
-    b.s.x = Vec3(0.0, -0.5 - k, 0.0);
-    b.updateDerived();
-    world.add(b, "hanging" + std::to_string(k));
-  }
+  for (int k = 0; k < 3; ++k)
+    addBox(world, "hanging" + std::to_string(k), Vec3::Constant(0.5), Vec3(0.0, -0.5 - k, 0.0));
   DampedIntegrationStepper stepper;
   const double slop = FixContactParams{}.slop * 0.5;
   for (int step = 0; step < 60; ++step) stepper.step(world, kDt);
