@@ -332,6 +332,8 @@ TEST_CASE("Technique options reach the stepper and its header, and options a met
   dampedOnly("--continuous-collision on", "continuous_collision", "on", "continuous collision");
   CHECK(boxsim::readTrajectory(out).meta.at("impact_passes") == "0");
   dampedOnly("--impact-passes 20", "impact_passes", "20", "impact passes");
+  CHECK(boxsim::readTrajectory(out).meta.at("shock_iterations") == "8");
+  dampedOnly("--shock-iterations 1", "shock_iterations", "1", "shock iterations");
   CHECK(boxsim::readTrajectory(out).meta.at("damp_supported_only") == "off");
   dampedOnly("--damp-supported-only on", "damp_supported_only", "on", "damp supported only");
   CHECK(boxsim::readTrajectory(out).meta.at("fix_stop_lifted_approach") == "off");

@@ -33,6 +33,7 @@ void refuseOptions(const std::string& method, const TechniqueOptions& options,
       {options.fixStopApproach.has_value(), "fix stop approach"},
       {options.continuousCollision.has_value(), "continuous collision"},
       {options.impactPasses.has_value(), "impact passes"},
+      {options.shockIterations.has_value(), "shock iterations"},
       {options.plausibilitySeed.has_value(), "plausibility seed"},
   };
   for (const auto& [given, option] : notTaken)
@@ -105,6 +106,7 @@ std::unique_ptr<Stepper> makeStepper(const std::string& method, const TechniqueO
     if (options.fixStopApproach) params.fixContacts.stopLiftedApproach = *options.fixStopApproach;
     if (options.continuousCollision) params.continuousCollision.enabled = *options.continuousCollision;
     if (options.impactPasses) params.impactPasses = *options.impactPasses;
+    if (options.shockIterations) params.shockIterations = *options.shockIterations;
     if (options.integrator) params.impulse.integrator = *options.integrator;
     if (options.plausibilitySeed) {
       params.plausibility.enabled = true;

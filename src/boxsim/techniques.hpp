@@ -51,6 +51,9 @@ struct TechniqueOptions {
   /// Collision passes damped integration may add while a pass still stops an impact
   /// (DampedIntegrationParams::impactPasses, >= 0); empty: default (0, A.2 as written).
   std::optional<int> impactPasses;
+  /// Visits of a level's contacts by the shock sweep of damped integration with friction
+  /// (DampedIntegrationParams::shockIterations, >= 1); empty: default (8).
+  std::optional<int> shockIterations;
   /// Visual plausibility (\thesis{§4.2}) of damped integration: perturbation on with this seed;
   /// empty: off.
   std::optional<unsigned long> plausibilitySeed;

@@ -38,6 +38,7 @@ struct RunArgs {
   std::optional<bool> exactEdgePairs;
   std::optional<bool> edgeCorners;
   std::optional<int> impactPasses;  // empty: the method's default (0)
+  std::optional<int> shockIterations;  // empty: the method's default (8)
   std::string broadPhase;     // empty: the scene's choice
   std::optional<unsigned long> plausibilitySeed;
   std::optional<int> threads;  // empty: the method's default (1)
@@ -104,6 +105,7 @@ TechniqueOptions techniqueOptions(const RunArgs& args) {
   options.exactEdgePairs = args.exactEdgePairs;
   options.edgeCorners = args.edgeCorners;
   options.impactPasses = args.impactPasses;
+  options.shockIterations = args.shockIterations;
   options.plausibilitySeed = args.plausibilitySeed;
   options.threads = args.threads;
   return options;
@@ -245,6 +247,12 @@ void addRunCommand(CLI::App& app) {
                   "smaller box's half size a step), so that a landing stops a whole column of "
                   "boxes in its step (default 0: the thesis' five)")
       ->check(CLI::Range(0, 1000));
+  cmd->add_option("--shock-iterations", args->shockIterations,
+                  "With friction, how many times damped integration's shock sweep may visit a "
+                  "level's contacts, their impulses accumulated, until a visit changes nothing "
+                  "(default 8; 1: each contact once, which lifts a body resting on several "
+                  "supports)")
+      ->check(CLI::Range(1, 1000));
   cmd->add_option("--broad-phase", args->broadPhase,
                   "How candidate pairs are found, overriding the scene's \"broad_phase\": "
                   "sweep_and_prune (default) or all_pairs (every pair tested, thesis §4.1); the "
