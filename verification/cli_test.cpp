@@ -336,8 +336,9 @@ TEST_CASE("Technique options reach the stepper and its header, and options a met
   dampedOnly("--shock-iterations 1", "shock_iterations", "1", "shock iterations");
   CHECK(boxsim::readTrajectory(out).meta.at("damp_supported_only") == "off");
   dampedOnly("--damp-supported-only on", "damp_supported_only", "on", "damp supported only");
-  CHECK(boxsim::readTrajectory(out).meta.at("fix_stop_lifted_approach") == "off");
-  dampedOnly("--fix-stop-approach on", "fix_stop_lifted_approach", "on", "fix stop approach");
+  CHECK(boxsim::readTrajectory(out).meta.at("fix_stop_lifted_approach") == "on");
+  CHECK(boxsim::readTrajectory(out).meta.at("fix_stop_lifted_over_g_dt2") == "4");
+  dampedOnly("--fix-stop-approach off", "fix_stop_lifted_approach", "off", "fix stop approach");
   // Geometric stability: the analytic method's default is off, damped integration's the
   // thesis' rule; under_load is taken by both, refused by the others.
   CHECK(boxsim::readTrajectory(out).meta.at("geometric_stability") == "thesis");

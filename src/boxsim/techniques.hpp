@@ -37,7 +37,7 @@ struct TechniqueOptions {
   /// Damping of supported bodies only (DampingParams::supportedOnly) of damped integration;
   /// empty: its default (off, \alg{DAMPENOBJECTS} as written).
   std::optional<bool> dampSupportedOnly;
-  /// damped: FixContactParams::stopLiftedApproach (unset: its default, off)
+  /// damped: FixContactParams::stopLiftedApproach (unset: its default, on)
   std::optional<bool> fixStopApproach;
   /// Continuous collision detection for fast bodies of damped integration
   /// (continuous_collision.hpp); empty: default (off).

@@ -235,8 +235,9 @@ void addRunCommand(CLI::App& app) {
       ->check(CLI::IsMember({"on", "off"}));
   cmd->add_option("--fix-stop-approach", args->fixStopApproach,
                   "FIXCONTACTCONSTRAINTS also stops the approach of a frictional body it lifts "
-                  "out of more than two steps' fall (damped): on, off (default: positions alone, "
-                  "as the thesis; on, frictional landings end shallower and heaps sleep later)")
+                  "out of more than four times a step's fall from rest (damped): on (default; "
+                  "a tall frictional column that lands at once no longer gains energy), off "
+                  "(positions alone, as the thesis)")
       ->check(CLI::IsMember({"on", "off"}));
   cmd->add_option("--continuous-collision", args->continuousCollision,
                   "Continuous collision detection for fast bodies (damped): on, off (default)")

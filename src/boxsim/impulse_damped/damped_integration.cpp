@@ -26,6 +26,10 @@ DampedIntegrationStepper::DampedIntegrationStepper(const DampedIntegrationParams
         "damped: impact passes must be >= 0 and the impact reach a finite number > 0 (units of l)");
   if (params.shockIterations < 1)
     throw std::invalid_argument("damped: shock iterations must be >= 1 (1: one visit of each contact)");
+  if (!(params.fixContacts.stopLiftedOver >= 0.0) || !std::isfinite(params.fixContacts.stopLiftedOver))
+    throw std::invalid_argument(
+        "damped: the lift FIXCONTACTCONSTRAINTS' stop begins at must be a finite number >= 0 "
+        "(units of g dt^2; 4 by default)");
   if (params.continuousCollision.maxSubsteps < 1 ||
       !(params.continuousCollision.fastReach > 0.0))
     throw std::invalid_argument(
@@ -75,6 +79,7 @@ std::map<std::string, std::string> DampedIntegrationStepper::parameters() const 
       {"slop_per_l", shortestText(params_.fixContacts.slop)},
       {"fix_side_share_deg", shortestText(params_.fixContacts.sideShareAngleDeg)},
       {"fix_stop_lifted_approach", params_.fixContacts.stopLiftedApproach ? "on" : "off"},
+      {"fix_stop_lifted_over_g_dt2", shortestText(params_.fixContacts.stopLiftedOver)},
       {"sleep", s.enabled ? "on" : "off"},
       {"sleep_time_s", shortestText(s.timeToSleep)},
       {"sleep_still_by", s.stillByPose ? "pose" : "pose_and_momenta"},

@@ -139,9 +139,10 @@ int fixContactConstraints(World& world, double margin, const FixContactParams& p
       n += k;
     }
     // FixContactParams::stopLiftedApproach (DEVIATION there): a frictional body lifted out of
-    // more than two steps' fall stops approaching the body it was lifted from.
+    // more than stopLiftedOver times a step's fall from rest stops approaching the body it was
+    // lifted from.
     if (params.stopLiftedApproach && !share &&
-        static_cast<double>(n) * step > 2.0 * world.gravity.norm() * dt * dt &&
+        static_cast<double>(n) * step > params.stopLiftedOver * world.gravity.norm() * dt * dt &&
         !combinedFriction(moving.friction, other.friction).frictionless()) {
       // The impulse of restitution 0 at the contact's centroid, the lower body held.
       const Vec3 point = c.centroid();
