@@ -199,6 +199,7 @@ void buildRows(FrictionRows& rows, const RigidBody& a, const RigidBody& b, const
   rows.factorised = inverseOfPositiveDefinite(W, rows.Winv);
   rows.normW = W.norm();
   rows.tippingFactorised = false;
+  rows.slidingFactorised = false;
 }
 
 /// Coulomb (Goyal, Ruina and Papadopoulos' ellipse): when (J_t, τ / ρ) of `total` exceeds
@@ -223,6 +224,27 @@ void limitByCoulomb(Vec5& total, const Vec5& before, const Vec5& slip, FrictionR
     }
     total.tail<2>() = before.tail<2>() - rows.tippingLlt.solve(tip);
   }
+}
+
+/// The sliding and spin rows of `total` (N s, N m s) that stop those rows under the couple of
+/// `total` as it stands (rows 3, 4), from the sums `before` and the rows' velocities `slip`,
+/// limited by Coulomb as limitByCoulomb limits them (onto the ellipse of μd N when beyond μs N;
+/// N in N s, ρ = radius in m). W = rows.W; its sliding block is factorised into `rows` on first
+/// use.
+void stopSlidingUnderCouple(Vec5& total, const Vec5& before, const Vec5& slip, FrictionRows& rows,
+                            const Friction& friction, double N, double radius, bool torsion) {
+  const Mat5& W = rows.W;
+  if (!rows.slidingFactorised) {
+    rows.slidingLlt.compute(W.block<3, 3>(0, 0));
+    rows.slidingFactorised = true;
+  }
+  if (rows.slidingLlt.info() != Eigen::Success) return;
+  const Eigen::Vector3d slide =
+      slip.head<3>() + W.block<3, 2>(0, 3) * (total.tail<2>() - before.tail<2>());
+  total.head<3>() = before.head<3>() - rows.slidingLlt.solve(slide);
+  const double spin = torsion ? total(2) / radius : 0.0;
+  const double load = std::sqrt(total(0) * total(0) + total(1) * total(1) + spin * spin);
+  if (load > friction.muStatic * N) total.head<3>() *= load > 0.0 ? friction.muDynamic * N / load : 0.0;
 }
 
 /// Holds the couple of `total` (its rows 3, 4, N m s about t1, t2) to a centre of pressure
@@ -289,8 +311,17 @@ void applyPatchFriction(RigidBody& a, RigidBody& b, const Vec3& ra, const Vec3& 
   // Coulomb: (J_t, τ / ρ) within μs N, else on the ellipse of μd N.
   const double N = sum.normal;
   limitByCoulomb(total, before, slip, rows, friction, N, patch.radius, torsion);
-  // The couple: its centre of pressure p = n × couple / N within the patch.
-  if (tipping) holdCoupleInPatch(total, patch, t1, t2, N);
+  // The couple: its centre of pressure p = n × couple / N within the patch. Where the patch
+  // holds back part of the couple that stops the tipping, the friction found with that couple
+  // no longer stops the sliding, so it is found again under the couple held: a box tipping
+  // over an edge had the couple that stops its turn, which also stops its contact's slide,
+  // taken away whole (an edge holds no couple across it), and no friction was left at all.
+  if (tipping) {
+    const Eigen::Vector2d wanted = total.tail<2>();
+    holdCoupleInPatch(total, patch, t1, t2, N);
+    if (!sameBits(total(3), wanted.x()) || !sameBits(total(4), wanted.y()))
+      stopSlidingUnderCouple(total, before, slip, rows, friction, N, patch.radius, torsion);
+  }
   const Vec5 change = total - before;
   // The kinetic energy changes by Δ · slip + ½ Δᵀ W Δ: an increment that would raise it waits.
   if (change.dot(slip) + 0.5 * change.dot(W * change) > 1e-12 * slip.squaredNorm() / rows.normW) return;

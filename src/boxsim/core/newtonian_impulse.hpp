@@ -137,6 +137,10 @@ struct FrictionRows {
   /// sliding friction), formed on first use.
   Eigen::LLT<Eigen::Matrix2d> tippingLlt;
   bool tippingFactorised = false;    ///< tippingLlt holds the block of the W above
+  /// The sliding and spin rows' own block of W factorised (the friction that stops the sliding
+  /// under a couple the patch holds back), formed on first use.
+  Eigen::LLT<Eigen::Matrix3d> slidingLlt;
+  bool slidingFactorised = false;    ///< slidingLlt holds the block of the W above
 };
 
 /// What a contact has received so far in a step: the budget and the state of its friction.
