@@ -176,7 +176,9 @@ struct ContactPatch {
 /// - tipping: a normal impulse N acting at a point p of the patch instead of its centroid is
 ///   the same impulse plus the couple N p × n; the couple's centre of pressure n × couple / N
 ///   is kept within the patch polygon (scaled towards the centroid until it is; a line of
-///   contact holds only along itself).
+///   contact holds only along itself); where it is held back, the sliding and spin rows are
+///   solved again under the couple held and limited as above (a box tipping over an edge keeps
+///   the friction that holds the edge).
 /// N = sum.normal. The change of the sums acts on the bodies (b: +J at x_b + rb and the angular
 /// impulse +A; a the opposite) unless it would raise the pair's kinetic energy, and `sum` is
 /// updated. A contact with no budget (N = 0) whose sums are still zero gets no friction and
