@@ -202,20 +202,28 @@ void buildRows(FrictionRows& rows, const RigidBody& a, const RigidBody& b, const
   rows.slidingFactorised = false;
 }
 
-/// Coulomb (Goyal, Ruina and Papadopoulos' ellipse): when (J_t, τ / ρ) of `total` exceeds
-/// μs N (N in N s, ρ = radius in m, no spin term without torsion), scales it onto the ellipse
-/// of μd N and sets the couple to the one that stops the tipping under the friction so limited,
-/// from the sums `before` and the rows' velocities `slip` (m/s, rad/s) with inverse mass
-/// W = rows.W (its tipping block is factorised into `rows` on first use).
-void limitByCoulomb(Vec5& total, const Vec5& before, const Vec5& slip, FrictionRows& rows,
-                    const Friction& friction, double N, double radius, bool torsion) {
-  const Mat5& W = rows.W;
+/// Coulomb's law on the sliding and spin rows of `total` (Goyal, Ruina and Papadopoulos'
+/// ellipse): when (J_t, τ / ρ) exceeds μs N (N in N s, ρ = radius in m, no spin term without
+/// torsion), scales them onto the ellipse of μd N; whether it did (the contact slides).
+bool slideOntoEllipse(Vec5& total, const Friction& friction, double N, double radius,
+                      bool torsion) {
   // The norm as written, not the C library's three-argument hypot, which libraries round
   // differently (docs/web.md); impulses are far from overflow.
   const double spin = torsion ? total(2) / radius : 0.0;
   const double load = std::sqrt(total(0) * total(0) + total(1) * total(1) + spin * spin);
-  if (load > friction.muStatic * N) {
-    total.head<3>() *= load > 0.0 ? friction.muDynamic * N / load : 0.0;
+  if (!(load > friction.muStatic * N)) return false;
+  total.head<3>() *= load > 0.0 ? friction.muDynamic * N / load : 0.0;
+  return true;
+}
+
+/// Coulomb: the sliding and spin rows of `total` limited (slideOntoEllipse), and when they
+/// slide the couple set to the one that stops the tipping under the friction so limited, from
+/// the sums `before` and the rows' velocities `slip` (m/s, rad/s) with inverse mass W = rows.W
+/// (its tipping block is factorised into `rows` on first use).
+void limitByCoulomb(Vec5& total, const Vec5& before, const Vec5& slip, FrictionRows& rows,
+                    const Friction& friction, double N, double radius, bool torsion) {
+  const Mat5& W = rows.W;
+  if (slideOntoEllipse(total, friction, N, radius, torsion)) {
     // Sliding: the couple that stops the tipping under the friction as limited.
     const Eigen::Vector2d tip = slip.tail<2>() + W.block<2, 3>(3, 0) * (total.head<3>() - before.head<3>());
     if (!rows.tippingFactorised) {
@@ -228,9 +236,8 @@ void limitByCoulomb(Vec5& total, const Vec5& before, const Vec5& slip, FrictionR
 
 /// The sliding and spin rows of `total` (N s, N m s) that stop those rows under the couple of
 /// `total` as it stands (rows 3, 4), from the sums `before` and the rows' velocities `slip`,
-/// limited by Coulomb as limitByCoulomb limits them (onto the ellipse of μd N when beyond μs N;
-/// N in N s, ρ = radius in m). W = rows.W; its sliding block is factorised into `rows` on first
-/// use.
+/// limited by Coulomb (slideOntoEllipse; N in N s, ρ = radius in m). W = rows.W; its sliding
+/// block is factorised into `rows` on first use.
 void stopSlidingUnderCouple(Vec5& total, const Vec5& before, const Vec5& slip, FrictionRows& rows,
                             const Friction& friction, double N, double radius, bool torsion) {
   const Mat5& W = rows.W;
@@ -242,9 +249,7 @@ void stopSlidingUnderCouple(Vec5& total, const Vec5& before, const Vec5& slip, F
   const Eigen::Vector3d slide =
       slip.head<3>() + W.block<3, 2>(0, 3) * (total.tail<2>() - before.tail<2>());
   total.head<3>() = before.head<3>() - rows.slidingLlt.solve(slide);
-  const double spin = torsion ? total(2) / radius : 0.0;
-  const double load = std::sqrt(total(0) * total(0) + total(1) * total(1) + spin * spin);
-  if (load > friction.muStatic * N) total.head<3>() *= load > 0.0 ? friction.muDynamic * N / load : 0.0;
+  slideOntoEllipse(total, friction, N, radius, torsion);
 }
 
 /// Holds the couple of `total` (its rows 3, 4, N m s about t1, t2) to a centre of pressure
